@@ -38,7 +38,7 @@ struct ImuNoise {
 struct Calibration {
   CameraIntrinsics camera;
   Eigen::Isometry3d T_BC = Eigen::Isometry3d::Identity();  // camera pose in the body frame
-  double time_offset = 0.0;                                  // t_imu = t_cam + time_offset
+  double time_offset = 0.0;                                // t_imu = t_cam + time_offset
   ImuNoise imu;
 
   /// Throws InputError (file + key) on a missing file, a missing key or an unparsable value.

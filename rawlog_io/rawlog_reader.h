@@ -2,11 +2,11 @@
 // Streams a rawlog entry by entry (images lazy-loaded, never the whole dataset in memory), from
 // any working directory (works around MRPT 2.5.8's images-directory bug by computing
 // `<dir>/<stem>_Images` and calling mrpt::io::setLazyLoadPathBase()).
-#include <memory>
 #include <mrpt/obs/CObservation.h>
 #include <mrpt/obs/CObservationIMU.h>
 #include <mrpt/obs/CObservationImage.h>
 #include <mrpt/obs/CObservationRobotPose.h>
+#include <memory>
 #include <opencv2/core.hpp>
 #include <string>
 

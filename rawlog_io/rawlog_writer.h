@@ -13,7 +13,7 @@
 namespace rpvio {
 
 struct ImuSample {
-  double t = 0;                                  // seconds
+  double t = 0;                                     // seconds
   Eigen::Vector3d gyro = Eigen::Vector3d::Zero();   // rad/s, body frame
   Eigen::Vector3d accel = Eigen::Vector3d::Zero();  // specific force, m/s^2, body frame
 };

@@ -1,0 +1,120 @@
+#include "rawlog_io/rawlog_reader.h"
+
+#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/io/lazy_load_path.h>
+#include <mrpt/serialization/CArchive.h>
+#include <cmath>
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "rawlog_io/input_error.h"
+#include "rawlog_io/mrpt_conversions.h"
+
+namespace fs = std::filesystem;
+
+namespace rpvio {
+
+double toSeconds(const mrpt::Clock::time_point& t) { return mrpt::Clock::toDouble(t); }
+mrpt::Clock::time_point fromSeconds(double t) { return mrpt::Clock::fromDouble(t); }
+
+struct RawlogReader::Impl {
+  std::string path, images_dir;
+  mrpt::io::CFileGZInputStream stream;
+  size_t entries = 0;
+  mrpt::Clock::time_point last_stamp{};
+  bool has_last = false;
+
+  std::string entry() const { return "entry " + std::to_string(entries + 1); }
+};
+
+RawlogReader::RawlogReader(const std::string& path) : impl_(std::make_unique<Impl>()) {
+  impl_->path = path;
+  if (!fs::is_regular_file(path)) throw InputError(path, "", "rawlog file not found");
+  if (!impl_->stream.open(path)) throw InputError(path, "", "cannot open rawlog");
+  // MRPT 2.5.8's CRawlog::detectImagesDirectory() fails for paths with a directory part.
+  const fs::path p = fs::absolute(path);
+  impl_->images_dir = (p.parent_path() / (p.stem().string() + "_Images")).string();
+  mrpt::io::setLazyLoadPathBase(impl_->images_dir);
+}
+
+RawlogReader::~RawlogReader() = default;
+
+mrpt::obs::CObservation::Ptr RawlogReader::next() {
+  Impl& d = *impl_;
+  const uint64_t position_before = d.stream.getPosition();
+  mrpt::serialization::CSerializable::Ptr object;
+  try {
+    auto archive = mrpt::serialization::archiveFrom(d.stream);
+    object = archive.ReadObject();
+  } catch (const mrpt::serialization::CExceptionEOF&) {
+    if (d.stream.getPosition() == position_before) return nullptr;  // clean end of file
+    throw InputError(d.path, d.entry(), "truncated rawlog (file ends inside an entry)");
+  } catch (const std::exception& e) {
+    std::string what = e.what();
+    what = what.substr(0, what.find('\n'));
+    throw InputError(d.path, d.entry(),
+                     d.entries == 0 ? "not an MRPT rawlog" : "corrupt or truncated entry");
+  }
+  auto obs = std::dynamic_pointer_cast<mrpt::obs::CObservation>(object);
+  if (!obs)
+    throw InputError(d.path, d.entry(),
+                     "not an observation (only observation-only rawlogs are supported)");
+  if (d.has_last && obs->timestamp < d.last_stamp)
+    throw InputError(d.path, d.entry(),
+                     "timestamp goes backwards (" + std::to_string(toSeconds(obs->timestamp)) +
+                         " s after " + std::to_string(toSeconds(d.last_stamp)) + " s)");
+  d.last_stamp = obs->timestamp;
+  d.has_last = true;
+  ++d.entries;
+  return obs;
+}
+
+size_t RawlogReader::entriesRead() const { return impl_->entries; }
+const std::string& RawlogReader::path() const { return impl_->path; }
+const std::string& RawlogReader::imagesDir() const { return impl_->images_dir; }
+
+cv::Mat loadGrayImage(const mrpt::obs::CObservationImage& obs, const RawlogReader& reader) {
+  const std::string entry = "entry " + std::to_string(reader.entriesRead());
+  std::string file;
+  if (obs.image.isExternallyStored()) {
+    file = obs.image.getExternalStorageFile();
+    if (fs::path(file).is_relative()) file = (fs::path(reader.imagesDir()) / file).string();
+  } else {
+    throw InputError(reader.path(), entry, "image is not stored externally (DESIGN.md §4)");
+  }
+  cv::Mat img = cv::imread(file, cv::IMREAD_UNCHANGED);
+  if (img.empty()) throw InputError(reader.path(), entry, "image missing or unreadable: " + file);
+  if (img.channels() == 3) cv::cvtColor(img, img, cv::COLOR_BGR2GRAY);
+  if (img.type() != CV_8UC1)
+    throw InputError(reader.path(), entry, "image is not 8-bit grayscale: " + file);
+  return img;
+}
+
+ImuSample toImuSample(const mrpt::obs::CObservationIMU& obs, const RawlogReader& reader) {
+  using namespace mrpt::obs;
+  const TIMUDataIndex fields[6] = {IMU_WX, IMU_WY, IMU_WZ, IMU_X_ACC, IMU_Y_ACC, IMU_Z_ACC};
+  double v[6];
+  for (int i = 0; i < 6; ++i) {
+    if (!obs.has(fields[i]) || !std::isfinite(obs.get(fields[i])))
+      throw InputError(reader.path(), "entry " + std::to_string(reader.entriesRead()),
+                       "IMU sample missing or not finite");
+    v[i] = obs.get(fields[i]);
+  }
+  ImuSample s;
+  s.t = toSeconds(obs.timestamp);
+  s.gyro = {v[0], v[1], v[2]};
+  s.accel = {v[3], v[4], v[5]};
+  return s;
+}
+
+StampedPose toStampedPose(const mrpt::obs::CObservationRobotPose& obs) {
+  const Eigen::Isometry3d T = toIsometry(obs.pose.mean);
+  StampedPose p;
+  p.t = toSeconds(obs.timestamp);
+  p.p = T.translation();
+  p.q = Eigen::Quaterniond(T.linear());
+  return p;
+}
+
+}  // namespace rpvio

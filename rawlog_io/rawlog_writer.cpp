@@ -1,0 +1,134 @@
+#include "rawlog_io/rawlog_writer.h"
+
+#include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/obs/CObservationIMU.h>
+#include <mrpt/obs/CObservationImage.h>
+#include <mrpt/obs/CObservationRobotPose.h>
+#include <mrpt/serialization/CArchive.h>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+#include <stdexcept>
+
+#include "rawlog_io/atomic_file.h"
+#include "rawlog_io/mrpt_conversions.h"
+#include "rawlog_io/rawlog_labels.h"
+#include "rawlog_io/rawlog_reader.h"
+
+namespace fs = std::filesystem;
+
+namespace rpvio {
+
+struct RawlogWriter::Impl {
+  std::string path, images_dir, images_tmp_dir;
+  mrpt::img::TCamera camera;
+  mrpt::poses::CPose3D camera_pose;
+  mrpt::io::CFileGZOutputStream stream;
+  double last_t = -INFINITY;
+  bool closed = false;
+
+  void checkTime(double t) {
+    if (!std::isfinite(t)) throw std::invalid_argument(path + ": non-finite timestamp");
+    if (t < last_t)
+      throw std::invalid_argument(path + ": observation at t=" + std::to_string(t) +
+                                  " s added after t=" + std::to_string(last_t) + " s");
+    last_t = t;
+  }
+
+  void write(const mrpt::obs::CObservation& obs) {
+    auto archive = mrpt::serialization::archiveFrom(stream);
+    archive << obs;
+  }
+
+  void addImageObservation(const char* label, double t, const cv::Mat& img8) {
+    if (img8.type() != CV_8UC1) throw std::invalid_argument(path + ": images must be CV_8UC1");
+    checkTime(t);
+    char name[96];
+    std::snprintf(name, sizeof(name), "%s_%019lld.png", label,
+                  static_cast<long long>(std::llround(t * 1e9)));
+    const std::string file = (fs::path(images_tmp_dir) / name).string();
+    // PNG is lossless, as masks need; compression level 1 keeps the writer fast.
+    if (!cv::imwrite(file, img8, {cv::IMWRITE_PNG_COMPRESSION, 1}))
+      throw std::runtime_error(file + ": cannot write image");
+    mrpt::obs::CObservationImage obs;
+    obs.sensorLabel = label;
+    obs.timestamp = fromSeconds(t);
+    obs.cameraParams = camera;
+    obs.cameraPose = camera_pose;
+    obs.image.setExternalStorage(name);
+    write(obs);
+  }
+};
+
+RawlogWriter::RawlogWriter(const std::string& path, const Calibration& calib)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->path = path;
+  const fs::path p(path);
+  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+  if (!fs::is_directory(dir)) throw std::runtime_error(path + ": output folder does not exist");
+  impl_->images_dir = (dir / (p.stem().string() + "_Images")).string();
+  impl_->images_tmp_dir = impl_->images_dir + ".tmp";
+  fs::remove_all(impl_->images_tmp_dir);
+  fs::create_directories(impl_->images_tmp_dir);
+  impl_->camera = toTCamera(calib.camera);
+  impl_->camera_pose = toCPose3D(calib.T_BC);
+  if (!impl_->stream.open(temporaryPathFor(path)))
+    throw std::runtime_error(path + ": cannot open for writing");
+}
+
+RawlogWriter::~RawlogWriter() {
+  if (impl_->closed) return;
+  impl_->stream.close();
+  std::error_code ec;
+  fs::remove(temporaryPathFor(impl_->path), ec);
+  fs::remove_all(impl_->images_tmp_dir, ec);
+}
+
+void RawlogWriter::addImage(double t, const cv::Mat& gray8) {
+  impl_->addImageObservation(labels::kCamera, t, gray8);
+}
+
+void RawlogWriter::addMask(double t, const cv::Mat& labels8) {
+  impl_->addImageObservation(labels::kPlaneMask, t, labels8);
+}
+
+void RawlogWriter::addImu(const ImuSample& s) {
+  impl_->checkTime(s.t);
+  mrpt::obs::CObservationIMU obs;
+  obs.sensorLabel = labels::kImu;
+  obs.timestamp = fromSeconds(s.t);
+  obs.set(mrpt::obs::IMU_WX, s.gyro.x());
+  obs.set(mrpt::obs::IMU_WY, s.gyro.y());
+  obs.set(mrpt::obs::IMU_WZ, s.gyro.z());
+  obs.set(mrpt::obs::IMU_X_ACC, s.accel.x());
+  obs.set(mrpt::obs::IMU_Y_ACC, s.accel.y());
+  obs.set(mrpt::obs::IMU_Z_ACC, s.accel.z());
+  impl_->write(obs);
+}
+
+void RawlogWriter::addGroundTruth(const StampedPose& pose) {
+  impl_->checkTime(pose.t);
+  mrpt::obs::CObservationRobotPose obs;
+  obs.sensorLabel = labels::kGroundTruth;
+  obs.timestamp = fromSeconds(pose.t);
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = pose.q.normalized().toRotationMatrix();
+  T.translation() = pose.p;
+  obs.pose.mean = toCPose3D(T);
+  obs.pose.cov.setZero();
+  impl_->write(obs);
+}
+
+void RawlogWriter::close() {
+  if (impl_->closed) return;
+  impl_->stream.close();
+  fs::remove_all(impl_->images_dir);
+  fs::rename(impl_->images_tmp_dir, impl_->images_dir);
+  commitTemporary(impl_->path);
+  impl_->closed = true;
+}
+
+std::string RawlogWriter::imagesDir() const { return impl_->images_dir; }
+
+}  // namespace rpvio

@@ -1,0 +1,171 @@
+#include "rawlog_io/trajectory_io.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "rawlog_io/atomic_file.h"
+#include "rawlog_io/input_error.h"
+
+namespace rpvio {
+namespace {
+
+bool isCommentOrBlank(const std::string& line) {
+  const auto b = line.find_first_not_of(" \t\r");
+  return b == std::string::npos || line[b] == '#' || line[b] == '%';
+}
+
+/// Splits on whitespace or commas; every token must be a finite number.
+std::vector<double> parseNumbers(const std::string& line, const std::string& path, int line_no) {
+  std::vector<double> values;
+  std::string token;
+  std::istringstream ss(line);
+  const char separator = line.find(',') != std::string::npos ? ',' : ' ';
+  auto push = [&](const std::string& raw) {
+    std::istringstream ts(raw);
+    std::string t;
+    if (!(ts >> t)) {
+      if (separator == ',')
+        throw InputError(path, "line " + std::to_string(line_no), "empty field");
+      return;
+    }
+    char* end = nullptr;
+    const double x = std::strtod(t.c_str(), &end);
+    if (*end != '\0' || !std::isfinite(x))
+      throw InputError(path, "line " + std::to_string(line_no), "not a finite number: '" + t + "'");
+    values.push_back(x);
+  };
+  if (separator == ',') {
+    while (std::getline(ss, token, ',')) push(token);
+  } else {
+    while (ss >> token) push(token);
+  }
+  return values;
+}
+
+/// Calls `row` with the numbers of every data line; at least `min_count` numbers per line.
+template <typename RowFn>
+void forEachRow(const std::string& path, size_t min_count, size_t max_count, RowFn row) {
+  if (!std::filesystem::is_regular_file(path))
+    throw InputError(path, "", "trajectory file not found");
+  std::ifstream in(path);
+  if (!in) throw InputError(path, "", "cannot open trajectory file");
+  std::string line;
+  int rows = 0;
+  for (int line_no = 1; std::getline(in, line); ++line_no) {
+    if (isCommentOrBlank(line)) continue;
+    const auto v = parseNumbers(line, path, line_no);
+    if (v.size() < min_count || v.size() > max_count)
+      throw InputError(
+          path, "line " + std::to_string(line_no),
+          "expected " + std::to_string(min_count) + " values, got " + std::to_string(v.size()));
+    row(v, line_no);
+    ++rows;
+  }
+  if (rows == 0) throw InputError(path, "", "no poses in trajectory file");
+}
+
+Eigen::Quaterniond checkedQuaternion(double w, double x, double y, double z,
+                                     const std::string& path, int line_no) {
+  Eigen::Quaterniond q(w, x, y, z);
+  if (q.norm() < 1e-6) throw InputError(path, "line " + std::to_string(line_no), "zero quaternion");
+  return q.normalized();
+}
+
+void checkIncreasing(const Trajectory& traj, double t, const std::string& path, int line_no) {
+  if (!traj.empty() && t <= traj.back().t)
+    throw InputError(path, "line " + std::to_string(line_no), "timestamps not increasing");
+}
+
+}  // namespace
+
+Trajectory readTum(const std::string& path) {
+  Trajectory traj;
+  forEachRow(path, 8, 8, [&](const std::vector<double>& v, int line_no) {
+    checkIncreasing(traj, v[0], path, line_no);
+    StampedPose p;
+    p.t = v[0];
+    p.p = {v[1], v[2], v[3]};
+    p.q = checkedQuaternion(v[7], v[4], v[5], v[6], path, line_no);
+    traj.push_back(p);
+  });
+  return traj;
+}
+
+Trajectory readKitti(const std::string& path) {
+  Trajectory traj;
+  forEachRow(path, 12, 12, [&](const std::vector<double>& v, int line_no) {
+    Eigen::Matrix3d r;
+    r << v[0], v[1], v[2], v[4], v[5], v[6], v[8], v[9], v[10];
+    StampedPose p;
+    p.t = static_cast<double>(traj.size());
+    p.p = {v[3], v[7], v[11]};
+    if (std::abs(r.determinant() - 1.0) > 1e-3)
+      throw InputError(path, "line " + std::to_string(line_no), "rotation is not orthonormal");
+    p.q = Eigen::Quaterniond(r).normalized();
+    traj.push_back(p);
+  });
+  return traj;
+}
+
+Trajectory readEurocCsv(const std::string& path) {
+  Trajectory traj;
+  // #timestamp [ns], p_x, p_y, p_z, q_w, q_x, q_y, q_z [, v, bw, ba ...]
+  forEachRow(path, 8, 64, [&](const std::vector<double>& v, int line_no) {
+    StampedPose p;
+    p.t = v[0] * 1e-9;
+    checkIncreasing(traj, p.t, path, line_no);
+    p.p = {v[1], v[2], v[3]};
+    p.q = checkedQuaternion(v[4], v[5], v[6], v[7], path, line_no);
+    traj.push_back(p);
+  });
+  return traj;
+}
+
+TrajectoryFormat detectTrajectoryFormat(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, "", "trajectory file not found");
+  std::string line;
+  for (int line_no = 1; std::getline(in, line); ++line_no) {
+    if (isCommentOrBlank(line)) continue;
+    if (line.find(',') != std::string::npos) return TrajectoryFormat::EurocCsv;
+    const auto count = parseNumbers(line, path, line_no).size();
+    if (count == 12) return TrajectoryFormat::Kitti;
+    if (count == 8) return TrajectoryFormat::Tum;
+    throw InputError(path, "line " + std::to_string(line_no),
+                     "unknown trajectory format (" + std::to_string(count) +
+                         " columns; TUM has 8, KITTI 12, EuRoC CSV is comma-separated)");
+  }
+  throw InputError(path, "", "no poses in trajectory file");
+}
+
+Trajectory readTrajectory(const std::string& path, TrajectoryFormat format) {
+  switch (format) {
+    case TrajectoryFormat::Kitti:
+      return readKitti(path);
+    case TrajectoryFormat::EurocCsv:
+      return readEurocCsv(path);
+    default:
+      return readTum(path);
+  }
+}
+
+Trajectory readTrajectory(const std::string& path) {
+  return readTrajectory(path, detectTrajectoryFormat(path));
+}
+
+void writeTum(const std::string& path, const Trajectory& trajectory) {
+  writeFileAtomically(path, [&](std::ostream& out) {
+    char line[256];
+    for (const StampedPose& p : trajectory) {
+      const Eigen::Quaterniond q = p.q.normalized();
+      std::snprintf(line, sizeof(line), "%.9f %.17g %.17g %.17g %.17g %.17g %.17g %.17g\n", p.t,
+                    p.p.x(), p.p.y(), p.p.z(), q.x(), q.y(), q.z(), q.w());
+      out << line;
+    }
+  });
+}
+
+}  // namespace rpvio
