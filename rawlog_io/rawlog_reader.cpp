@@ -18,9 +18,34 @@ namespace rpvio {
 double toSeconds(const mrpt::Clock::time_point& t) { return mrpt::Clock::toDouble(t); }
 mrpt::Clock::time_point fromSeconds(double t) { return mrpt::Clock::fromDouble(t); }
 
+namespace {
+
+/// Counts the bytes handed out, so a clean end of file (no byte of a new entry) can be told from a
+/// file that ends inside an entry.
+class CountingStream : public mrpt::io::CStream {
+ public:
+  explicit CountingStream(mrpt::io::CStream& inner) : inner_(inner) {}
+  size_t Read(void* buffer, size_t count) override {
+    const size_t n = inner_.Read(buffer, count);
+    bytes_ += n;
+    return n;
+  }
+  size_t Write(const void*, size_t) override { return 0; }
+  uint64_t Seek(int64_t, mrpt::io::CStream::TSeekOrigin) override { return bytes_; }
+  uint64_t getTotalBytesCount() const override { return inner_.getTotalBytesCount(); }
+  uint64_t getPosition() const override { return bytes_; }
+
+ private:
+  mrpt::io::CStream& inner_;
+  uint64_t bytes_ = 0;
+};
+
+}  // namespace
+
 struct RawlogReader::Impl {
   std::string path, images_dir;
-  mrpt::io::CFileGZInputStream stream;
+  mrpt::io::CFileGZInputStream gz;
+  CountingStream stream{gz};
   size_t entries = 0;
   mrpt::Clock::time_point last_stamp{};
   bool has_last = false;
@@ -31,7 +56,7 @@ struct RawlogReader::Impl {
 RawlogReader::RawlogReader(const std::string& path) : impl_(std::make_unique<Impl>()) {
   impl_->path = path;
   if (!fs::is_regular_file(path)) throw InputError(path, "", "rawlog file not found");
-  if (!impl_->stream.open(path)) throw InputError(path, "", "cannot open rawlog");
+  if (!impl_->gz.open(path)) throw InputError(path, "", "cannot open rawlog");
   // MRPT 2.5.8's CRawlog::detectImagesDirectory() fails for paths with a directory part.
   const fs::path p = fs::absolute(path);
   impl_->images_dir = (p.parent_path() / (p.stem().string() + "_Images")).string();
@@ -50,9 +75,7 @@ mrpt::obs::CObservation::Ptr RawlogReader::next() {
   } catch (const mrpt::serialization::CExceptionEOF&) {
     if (d.stream.getPosition() == position_before) return nullptr;  // clean end of file
     throw InputError(d.path, d.entry(), "truncated rawlog (file ends inside an entry)");
-  } catch (const std::exception& e) {
-    std::string what = e.what();
-    what = what.substr(0, what.find('\n'));
+  } catch (const std::exception&) {
     throw InputError(d.path, d.entry(),
                      d.entries == 0 ? "not an MRPT rawlog" : "corrupt or truncated entry");
   }

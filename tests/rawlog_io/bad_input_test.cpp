@@ -1,0 +1,177 @@
+// Bad input gets an InputError naming the file and the position (issue 2 §3).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/obs/CObservationIMU.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include "rawlog_io/calibration.h"
+#include "rawlog_io/input_error.h"
+#include "rawlog_io/rawlog_labels.h"
+#include "rawlog_io/rawlog_reader.h"
+#include "rawlog_io/rawlog_writer.h"
+#include "rawlog_io/trajectory_io.h"
+#include "tests/test_util.h"
+
+namespace rpvio {
+namespace {
+
+Calibration tinyCalibration() {
+  Calibration c;
+  c.camera.width = 8;
+  c.camera.height = 6;
+  c.camera.fx = c.camera.fy = 10;
+  c.camera.cx = 4;
+  c.camera.cy = 3;
+  return c;
+}
+
+/// Reads the whole rawlog, loading images and IMU samples like a consumer would.
+void consume(const std::string& path) {
+  RawlogReader reader(path);
+  while (auto obs = reader.next()) {
+    if (auto img = std::dynamic_pointer_cast<mrpt::obs::CObservationImage>(obs))
+      loadGrayImage(*img, reader);
+    if (auto imu = std::dynamic_pointer_cast<mrpt::obs::CObservationIMU>(obs))
+      toImuSample(*imu, reader);
+  }
+}
+
+/// Expects an InputError whose message names `file` and contains `position`.
+template <typename Fn>
+void expectInputError(Fn fn, const std::string& file, const std::string& position) {
+  try {
+    fn();
+    FAIL() << "no InputError thrown";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(file), std::string::npos) << what;
+    EXPECT_NE(what.find(position), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << "not one line: " << what;
+  }
+}
+
+std::string writeImuRawlog(const test::TempDir& dir, const std::vector<double>& stamps) {
+  const std::string path = dir.file("imu.rawlog");
+  mrpt::io::CFileGZOutputStream out(path);
+  auto archive = mrpt::serialization::archiveFrom(out);
+  for (double t : stamps) {
+    mrpt::obs::CObservationIMU obs;
+    obs.sensorLabel = labels::kImu;
+    obs.timestamp = fromSeconds(t);
+    for (auto f : {mrpt::obs::IMU_WX, mrpt::obs::IMU_WY, mrpt::obs::IMU_WZ, mrpt::obs::IMU_X_ACC,
+                   mrpt::obs::IMU_Y_ACC, mrpt::obs::IMU_Z_ACC})
+      obs.set(f, t);
+    archive << obs;
+  }
+  return path;
+}
+
+TEST(BadInput, MissingRawlog) {
+  expectInputError([] { RawlogReader("/nonexistent/seq.rawlog"); }, "/nonexistent/seq.rawlog",
+                   "not found");
+}
+
+TEST(BadInput, MissingCalibration) {
+  expectInputError([] { Calibration::load("/nonexistent/calib.ini"); }, "/nonexistent/calib.ini",
+                   "not found");
+}
+
+TEST(BadInput, CalibrationMalformedValue) {
+  test::TempDir dir;
+  Calibration c = tinyCalibration();
+  c.save(dir.file("calib.ini"));
+  std::ifstream in(dir.file("calib.ini"));
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  text.replace(text.find("fx = 10"), 7, "fx = ten");
+  test::writeText(dir.file("calib.ini"), text);
+  expectInputError([&] { Calibration::load(dir.file("calib.ini")); }, dir.file("calib.ini"),
+                   "line 5");
+}
+
+TEST(BadInput, MalformedCsvLine) {
+  test::TempDir dir;
+  test::writeText(dir.file("gt.csv"),
+                  "#timestamp,px,py,pz,qw,qx,qy,qz\n1000,0,0,0,1,0,0,0\n2000,0,0,x,1,0,0,0\n");
+  expectInputError([&] { readEurocCsv(dir.file("gt.csv")); }, dir.file("gt.csv"), "line 3");
+}
+
+TEST(BadInput, TrajectoryTimestampsBackwards) {
+  test::TempDir dir;
+  test::writeText(dir.file("t.tum"), "2 0 0 0 0 0 0 1\n1 0 0 0 0 0 0 1\n");
+  expectInputError([&] { readTum(dir.file("t.tum")); }, dir.file("t.tum"), "line 2");
+}
+
+TEST(BadInput, RawlogTimestampsBackwards) {
+  test::TempDir dir;
+  const std::string path = writeImuRawlog(dir, {1.0, 2.0, 1.5});
+  expectInputError([&] { consume(path); }, path, "entry 3");
+}
+
+TEST(BadInput, TruncatedRawlog) {
+  test::TempDir dir;
+  const std::string full = writeImuRawlog(dir, {1.0, 2.0, 3.0, 4.0});
+  // Decompress-level truncation: keep a prefix of the uncompressed stream, recompressed.
+  std::string plain;
+  {
+    mrpt::io::CFileGZInputStream in(full);
+    char buf[4096];
+    while (size_t n = in.Read(buf, sizeof(buf))) plain.append(buf, n);
+  }
+  const std::string cut = dir.file("cut.rawlog");
+  {
+    mrpt::io::CFileGZOutputStream out(cut);
+    out.Write(plain.data(), plain.size() - 10);  // ends inside the last entry
+  }
+  expectInputError([&] { consume(cut); }, cut, "truncated");
+}
+
+TEST(BadInput, NotARawlog) {
+  test::TempDir dir;
+  test::writeText(dir.file("notes.rawlog"), "this is a text file, not a rawlog\n");
+  expectInputError([&] { consume(dir.file("notes.rawlog")); }, dir.file("notes.rawlog"),
+                   "entry 1");
+}
+
+TEST(BadInput, ImageMissingFromDisk) {
+  test::TempDir dir;
+  const std::string path = dir.file("seq.rawlog");
+  {
+    RawlogWriter writer(path, tinyCalibration());
+    writer.addImage(1.0, cv::Mat(6, 8, CV_8UC1, cv::Scalar(7)));
+    writer.close();
+  }
+  for (const auto& f : std::filesystem::directory_iterator(dir.file("seq_Images")))
+    std::filesystem::remove(f.path());
+  expectInputError([&] { consume(path); }, path, "entry 1");
+}
+
+TEST(BadInput, NanInImu) {
+  test::TempDir dir;
+  const std::string path = dir.file("nan.rawlog");
+  {
+    RawlogWriter writer(path, tinyCalibration());
+    ImuSample s;
+    s.t = 1.0;
+    writer.addImu(s);
+    s.t = 1.005;
+    s.gyro.y() = std::numeric_limits<double>::quiet_NaN();
+    writer.addImu(s);
+    writer.close();
+  }
+  expectInputError([&] { consume(path); }, path, "entry 2");
+}
+
+TEST(BadInput, EmptyTrajectory) {
+  test::TempDir dir;
+  test::writeText(dir.file("empty.tum"), "# only a comment\n");
+  expectInputError([&] { readTrajectory(dir.file("empty.tum")); }, dir.file("empty.tum"),
+                   "no poses");
+}
+
+}  // namespace
+}  // namespace rpvio
