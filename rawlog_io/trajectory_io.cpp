@@ -8,63 +8,17 @@
 
 #include "rawlog_io/atomic_file.h"
 #include "rawlog_io/input_error.h"
+#include "rawlog_io/text_table.h"
 
 namespace rpvio {
 namespace {
 
-bool isCommentOrBlank(const std::string& line) {
-  const auto b = line.find_first_not_of(" \t\r");
-  return b == std::string::npos || line[b] == '#' || line[b] == '%';
-}
-
-/// Splits on whitespace or commas; every token must be a finite number.
-std::vector<double> parseNumbers(const std::string& line, const std::string& path, int line_no) {
-  std::vector<double> values;
-  std::string token;
-  std::istringstream ss(line);
-  const char separator = line.find(',') != std::string::npos ? ',' : ' ';
-  auto push = [&](const std::string& raw) {
-    std::istringstream ts(raw);
-    std::string t;
-    if (!(ts >> t)) {
-      if (separator == ',')
-        throw InputError(path, "line " + std::to_string(line_no), "empty field");
-      return;
-    }
-    char* end = nullptr;
-    const double x = std::strtod(t.c_str(), &end);
-    if (*end != '\0' || !std::isfinite(x))
-      throw InputError(path, "line " + std::to_string(line_no), "not a finite number: '" + t + "'");
-    values.push_back(x);
-  };
-  if (separator == ',') {
-    while (std::getline(ss, token, ',')) push(token);
-  } else {
-    while (ss >> token) push(token);
-  }
-  return values;
-}
-
-/// Calls `row` with the numbers of every data line; at least `min_count` numbers per line.
+/// Calls `row` with the numbers of every data line (between min_count and max_count of them).
 template <typename RowFn>
 void forEachRow(const std::string& path, size_t min_count, size_t max_count, RowFn row) {
-  if (!std::filesystem::is_regular_file(path))
-    throw InputError(path, "", "trajectory file not found");
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "", "cannot open trajectory file");
-  std::string line;
-  int rows = 0;
-  for (int line_no = 1; std::getline(in, line); ++line_no) {
-    if (isCommentOrBlank(line)) continue;
-    const auto v = parseNumbers(line, path, line_no);
-    if (v.size() < min_count || v.size() > max_count)
-      throw InputError(
-          path, "line " + std::to_string(line_no),
-          "expected " + std::to_string(min_count) + " values, got " + std::to_string(v.size()));
-    row(v, line_no);
-    ++rows;
-  }
-  if (rows == 0) throw InputError(path, "", "no poses in trajectory file");
+  forEachTextRow(path, [&](const std::vector<std::string>& fields, int line_no) {
+    row(parseNumberRow(fields, min_count, max_count, path, line_no), line_no);
+  });
 }
 
 Eigen::Quaterniond checkedQuaternion(double w, double x, double y, double z,
@@ -125,20 +79,15 @@ Trajectory readEurocCsv(const std::string& path) {
 }
 
 TrajectoryFormat detectTrajectoryFormat(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "", "trajectory file not found");
-  std::string line;
-  for (int line_no = 1; std::getline(in, line); ++line_no) {
-    if (isCommentOrBlank(line)) continue;
-    if (line.find(',') != std::string::npos) return TrajectoryFormat::EurocCsv;
-    const auto count = parseNumbers(line, path, line_no).size();
-    if (count == 12) return TrajectoryFormat::Kitti;
-    if (count == 8) return TrajectoryFormat::Tum;
-    throw InputError(path, "line " + std::to_string(line_no),
-                     "unknown trajectory format (" + std::to_string(count) +
-                         " columns; TUM has 8, KITTI 12, EuRoC CSV is comma-separated)");
-  }
-  throw InputError(path, "", "no poses in trajectory file");
+  int line_no = 0;
+  const std::string line = firstTextRow(path, line_no);
+  if (line.find(',') != std::string::npos) return TrajectoryFormat::EurocCsv;
+  const size_t columns = splitTextFields(line).size();
+  if (columns == 12) return TrajectoryFormat::Kitti;
+  if (columns == 8) return TrajectoryFormat::Tum;
+  throw InputError(path, "line " + std::to_string(line_no),
+                   "unknown trajectory format (" + std::to_string(columns) +
+                       " columns; TUM has 8, KITTI 12, EuRoC CSV is comma-separated)");
 }
 
 Trajectory readTrajectory(const std::string& path, TrajectoryFormat format) {

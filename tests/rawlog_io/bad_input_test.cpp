@@ -170,7 +170,7 @@ TEST(BadInput, EmptyTrajectory) {
   test::TempDir dir;
   test::writeText(dir.file("empty.tum"), "# only a comment\n");
   expectInputError([&] { readTrajectory(dir.file("empty.tum")); }, dir.file("empty.tum"),
-                   "no poses");
+                   "no data lines");
 }
 
 }  // namespace

@@ -1,0 +1,88 @@
+#include "rawlog_io/text_table.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "rawlog_io/input_error.h"
+
+namespace rpvio {
+namespace {
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r");
+  if (b == std::string::npos) return "";
+  return s.substr(b, s.find_last_not_of(" \t\r") - b + 1);
+}
+
+}  // namespace
+
+std::vector<std::string> splitTextFields(const std::string& line) {
+  std::vector<std::string> fields;
+  std::string token;
+  std::istringstream ss(line);
+  if (line.find(',') != std::string::npos) {
+    while (std::getline(ss, token, ',')) fields.push_back(trim(token));
+  } else {
+    while (ss >> token) fields.push_back(token);
+  }
+  return fields;
+}
+
+namespace {
+bool isData(const std::string& trimmed) {
+  return !trimmed.empty() && trimmed[0] != '#' && trimmed[0] != '%';
+}
+void checkReadable(const std::string& path, std::ifstream& in) {
+  if (!std::filesystem::is_regular_file(path)) throw InputError(path, "", "file not found");
+  if (!in) throw InputError(path, "", "cannot open file");
+}
+}  // namespace
+
+std::string firstTextRow(const std::string& path, int& line_number) {
+  std::ifstream in(path);
+  checkReadable(path, in);
+  std::string line;
+  for (line_number = 1; std::getline(in, line); ++line_number)
+    if (isData(trim(line))) return trim(line);
+  throw InputError(path, "", "no data lines in file");
+}
+
+void forEachTextRow(const std::string& path,
+                    const std::function<void(const std::vector<std::string>&, int)>& row) {
+  std::ifstream in(path);
+  checkReadable(path, in);
+  std::string line;
+  int rows = 0;
+  for (int line_no = 1; std::getline(in, line); ++line_no) {
+    const std::string s = trim(line);
+    if (!isData(s)) continue;
+    row(splitTextFields(s), line_no);
+    ++rows;
+  }
+  if (rows == 0) throw InputError(path, "", "no data lines in file");
+}
+
+double parseFiniteNumber(const std::string& token, const std::string& path, int line) {
+  char* end = nullptr;
+  const double x = std::strtod(token.c_str(), &end);
+  if (token.empty() || *end != '\0' || !std::isfinite(x))
+    throw InputError(path, "line " + std::to_string(line), "not a finite number: '" + token + "'");
+  return x;
+}
+
+std::vector<double> parseNumberRow(const std::vector<std::string>& fields, size_t min_count,
+                                   size_t max_count, const std::string& path, int line) {
+  if (fields.size() < min_count || fields.size() > max_count)
+    throw InputError(path, "line " + std::to_string(line),
+                     "expected " + std::to_string(min_count) + " values, got " +
+                         std::to_string(fields.size()));
+  std::vector<double> values;
+  values.reserve(fields.size());
+  for (const auto& f : fields) values.push_back(parseFiniteNumber(f, path, line));
+  return values;
+}
+
+}  // namespace rpvio
