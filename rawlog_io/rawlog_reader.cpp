@@ -106,7 +106,8 @@ cv::Mat loadGrayImage(const mrpt::obs::CObservationImage& obs, const RawlogReade
   } else {
     throw InputError(reader.path(), entry, "image is not stored externally (DESIGN.md §4)");
   }
-  cv::Mat img = cv::imread(file, cv::IMREAD_UNCHANGED);
+  // Checked first: OpenCV would print its own warning for a missing file.
+  cv::Mat img = fs::is_regular_file(file) ? cv::imread(file, cv::IMREAD_UNCHANGED) : cv::Mat();
   if (img.empty()) throw InputError(reader.path(), entry, "image missing or unreadable: " + file);
   if (img.channels() == 3) cv::cvtColor(img, img, cv::COLOR_BGR2GRAY);
   if (img.type() != CV_8UC1)

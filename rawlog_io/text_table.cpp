@@ -76,9 +76,9 @@ double parseFiniteNumber(const std::string& token, const std::string& path, int 
 std::vector<double> parseNumberRow(const std::vector<std::string>& fields, size_t min_count,
                                    size_t max_count, const std::string& path, int line) {
   if (fields.size() < min_count || fields.size() > max_count)
-    throw InputError(path, "line " + std::to_string(line),
-                     "expected " + std::to_string(min_count) + " values, got " +
-                         std::to_string(fields.size()));
+    throw InputError(
+        path, "line " + std::to_string(line),
+        "expected " + std::to_string(min_count) + " values, got " + std::to_string(fields.size()));
   std::vector<double> values;
   values.reserve(fields.size());
   for (const auto& f : fields) values.push_back(parseFiniteNumber(f, path, line));

@@ -1,13 +1,13 @@
 // Bad input gets an InputError naming the file and the position (issue 2 §3).
 #include <gtest/gtest.h>
 
-#include <filesystem>
-#include <fstream>
-#include <limits>
 #include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/obs/CObservationIMU.h>
 #include <mrpt/serialization/CArchive.h>
+#include <filesystem>
+#include <fstream>
+#include <limits>
 
 #include "rawlog_io/calibration.h"
 #include "rawlog_io/input_error.h"
@@ -133,8 +133,7 @@ TEST(BadInput, TruncatedRawlog) {
 TEST(BadInput, NotARawlog) {
   test::TempDir dir;
   test::writeText(dir.file("notes.rawlog"), "this is a text file, not a rawlog\n");
-  expectInputError([&] { consume(dir.file("notes.rawlog")); }, dir.file("notes.rawlog"),
-                   "entry 1");
+  expectInputError([&] { consume(dir.file("notes.rawlog")); }, dir.file("notes.rawlog"), "entry 1");
 }
 
 TEST(BadInput, ImageMissingFromDisk) {
