@@ -28,9 +28,11 @@ Eigen::Quaterniond checkedQuaternion(double w, double x, double y, double z,
   return q.normalized();
 }
 
-void checkIncreasing(const Trajectory& traj, double t, const std::string& path, int line_no) {
-  if (!traj.empty() && t <= traj.back().t)
-    throw InputError(path, "line " + std::to_string(line_no), "timestamps not increasing");
+void checkNotBackwards(const Trajectory& traj, double t, const std::string& path, int line_no) {
+  // Equal stamps occur in real files (TUM RGB-D ground truth printed to 0.1 ms); only a step
+  // backwards is an error.
+  if (!traj.empty() && t < traj.back().t)
+    throw InputError(path, "line " + std::to_string(line_no), "timestamp goes backwards");
 }
 
 }  // namespace
@@ -38,7 +40,7 @@ void checkIncreasing(const Trajectory& traj, double t, const std::string& path, 
 Trajectory readTum(const std::string& path) {
   Trajectory traj;
   forEachRow(path, 8, 8, [&](const std::vector<double>& v, int line_no) {
-    checkIncreasing(traj, v[0], path, line_no);
+    checkNotBackwards(traj, v[0], path, line_no);
     StampedPose p;
     p.t = v[0];
     p.p = {v[1], v[2], v[3]};
@@ -70,7 +72,7 @@ Trajectory readEurocCsv(const std::string& path) {
   forEachRow(path, 8, 64, [&](const std::vector<double>& v, int line_no) {
     StampedPose p;
     p.t = v[0] * 1e-9;
-    checkIncreasing(traj, p.t, path, line_no);
+    checkNotBackwards(traj, p.t, path, line_no);
     p.p = {v[1], v[2], v[3]};
     p.q = checkedQuaternion(v[4], v[5], v[6], v[7], path, line_no);
     traj.push_back(p);
