@@ -1,0 +1,164 @@
+#include "apps/lib/eval_app.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+#include "apps/evaluation/trajectory_plot.h"
+#include "apps/lib/command_line.h"
+#include "rawlog_io/atomic_file.h"
+#include "rawlog_io/input_error.h"
+
+namespace rpvio::apps {
+namespace {
+
+const char* kUsage =
+    "usage: rpvio-eval --gt FILE --est FILE [--est FILE2 ...] [--label NAME ...]\n"
+    "                  [--align se3|sim3|posyaw|none] [--max-dt SEC] [--format tum|kitti|euroc]\n"
+    "                  [--rpe-distance M] [--rpe-frames N] [--plot OUT.png] [--json OUT.json]\n"
+    "  Formats are recognized from the content unless --format is given. KITTI files associate by\n"
+    "  index, others by nearest timestamp within --max-dt (default 0.01 s). Default alignment "
+    "se3.\n";
+
+Trajectory readWithFormat(const std::string& path, const std::string& format) {
+  if (format.empty()) return readTrajectory(path);
+  if (format == "tum") return readTum(path);
+  if (format == "kitti") return readKitti(path);
+  if (format == "euroc") return readEurocCsv(path);
+  throw UsageError("unknown --format '" + format + "' (tum, kitti, euroc)");
+}
+
+std::string statsJson(const eval::ErrorStats& s) {
+  char buf[320];
+  std::snprintf(buf, sizeof(buf),
+                "{\"rmse\": %.17g, \"mean\": %.17g, \"median\": %.17g, \"std\": %.17g, "
+                "\"min\": %.17g, \"max\": %.17g, \"count\": %zu}",
+                s.rmse, s.mean, s.median, s.std, s.min, s.max, s.count);
+  return buf;
+}
+
+std::string jsonString(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
+void writeJson(const EvalAppOptions& opt, const EvalAppResult& res) {
+  writeFileAtomically(opt.json_file, [&](std::ostream& out) {
+    out << "{\n  \"ground_truth\": " << jsonString(opt.gt_file) << ",\n  \"alignment\": \""
+        << eval::toString(opt.eval.align) << "\",\n  \"max_dt\": " << opt.eval.max_dt
+        << ",\n  \"estimates\": [\n";
+    for (size_t k = 0; k < res.results.size(); ++k) {
+      const auto& r = res.results[k];
+      const auto& a = r.alignment;
+      out << "    {\"label\": " << jsonString(res.labels[k])
+          << ", \"file\": " << jsonString(opt.est_files[k]) << ", \"pairs\": " << r.pairs.size()
+          << ", \"coverage\": " << r.coverage << ",\n     \"ate\": " << statsJson(r.ate)
+          << ",\n     \"ate_rotation_rmse_deg\": " << r.ate_rotation_rmse_deg
+          << ",\n     \"rpe_distance\": {\"delta_m\": " << opt.eval.rpe_distance
+          << ", \"translation\": " << statsJson(r.rpe_distance.translation)
+          << ", \"rotation_deg\": " << statsJson(r.rpe_distance.rotation_deg) << "}"
+          << ",\n     \"rpe_frames\": {\"delta_frames\": " << opt.eval.rpe_frames
+          << ", \"translation\": " << statsJson(r.rpe_frames.translation)
+          << ", \"rotation_deg\": " << statsJson(r.rpe_frames.rotation_deg) << "}"
+          << ",\n     \"alignment\": {\"scale\": " << a.s << ", \"translation\": [" << a.t.x()
+          << ", " << a.t.y() << ", " << a.t.z() << "]}}" << (k + 1 < res.results.size() ? "," : "")
+          << "\n";
+    }
+    out << "  ]\n}\n";
+  });
+}
+
+}  // namespace
+
+EvalAppResult runEvaluation(const EvalAppOptions& opt) {
+  const Trajectory gt = readWithFormat(opt.gt_file, opt.format);
+  EvalAppResult res;
+  for (size_t k = 0; k < opt.est_files.size(); ++k) {
+    const std::string& file = opt.est_files[k];
+    eval::EvalOptions eval_opt = opt.eval;
+    if (!opt.format.empty() ? opt.format == "kitti"
+                            : detectTrajectoryFormat(file) == TrajectoryFormat::Kitti)
+      eval_opt.associate_by_index = true;
+    try {
+      res.results.push_back(eval::evaluate(gt, readWithFormat(file, opt.format), eval_opt));
+    } catch (const InputError&) {
+      throw;
+    } catch (const std::runtime_error& e) {
+      throw InputError(file, "", e.what());
+    }
+    res.labels.push_back(k < opt.labels.size() ? opt.labels[k]
+                                               : std::filesystem::path(file).stem().string());
+  }
+  if (!opt.plot_png.empty()) {
+    std::vector<eval::PlottedEstimate> plotted;
+    for (size_t k = 0; k < res.results.size(); ++k)
+      plotted.push_back({res.labels[k], &res.results[k]});
+    eval::writeTrajectoryPlot(opt.plot_png, gt, plotted,
+                              "alignment: " + eval::toString(opt.eval.align) + "   ground truth: " +
+                                  std::filesystem::path(opt.gt_file).filename().string());
+  }
+  if (!opt.json_file.empty()) writeJson(opt, res);
+  return res;
+}
+
+std::string formatEvaluationReport(const EvalAppOptions& opt, const EvalAppResult& res) {
+  std::ostringstream out;
+  char line[320];
+  for (const auto& r : res.results) {
+    std::snprintf(line, sizeof(line), "ATE_RMSE %.9f\n", r.ate.rmse);
+    out << line;
+  }
+  std::snprintf(line, sizeof(line), "%-20s %7s %9s %9s %9s %9s %9s %8s %10s %9s\n", "estimate",
+                "pairs", "coverage", "ATE rmse", "mean", "median", "max", "rot deg", "RPE@dist",
+                "RPE@1fr");
+  out << "\n" << line;
+  for (size_t k = 0; k < res.results.size(); ++k) {
+    const auto& r = res.results[k];
+    std::snprintf(line, sizeof(line),
+                  "%-20s %7zu %8.1f%% %9.4f %9.4f %9.4f %9.4f %8.3f %10.4f %9.4f\n",
+                  res.labels[k].substr(0, 20).c_str(), r.pairs.size(), 100 * r.coverage, r.ate.rmse,
+                  r.ate.mean, r.ate.median, r.ate.max, r.ate_rotation_rmse_deg,
+                  r.rpe_distance.translation.rmse, r.rpe_frames.translation.rmse);
+    out << line;
+  }
+  out << "(metres; alignment " << eval::toString(opt.eval.align) << "; RPE@dist over "
+      << opt.eval.rpe_distance << " m, RPE@1fr over " << opt.eval.rpe_frames << " frame(s))\n";
+  return out.str();
+}
+
+int evalMain(int argc, char** argv) {
+  return runApp("rpvio-eval", kUsage, [&] {
+    const CommandLine cli(argc, argv,
+                          {"gt", "est", "label", "align", "max-dt", "format", "plot", "json",
+                           "rpe-distance", "rpe-frames"},
+                          {});
+    EvalAppOptions opt;
+    opt.gt_file = cli.value("gt");
+    opt.est_files = cli.values("est");
+    if (opt.est_files.empty()) throw UsageError("missing required option --est");
+    opt.labels = cli.values("label");
+    opt.format = cli.valueOr("format", "");
+    try {
+      opt.eval.align = eval::parseAlignMode(cli.valueOr("align", "se3"));
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(e.what());
+    }
+    opt.eval.max_dt = cli.number("max-dt", 0.01);
+    opt.eval.rpe_distance = cli.number("rpe-distance", 10.0);
+    opt.eval.rpe_frames = static_cast<int>(cli.number("rpe-frames", 1));
+    opt.plot_png = cli.valueOr("plot", "");
+    opt.json_file = cli.valueOr("json", "");
+    const EvalAppResult res = runEvaluation(opt);
+    std::cout << formatEvaluationReport(opt, res);
+    if (!opt.plot_png.empty()) std::cout << "plot: " << opt.plot_png << "\n";
+    if (!opt.json_file.empty()) std::cout << "json: " << opt.json_file << "\n";
+    return 0;
+  });
+}
+
+}  // namespace rpvio::apps
