@@ -8,95 +8,11 @@
 #include <sstream>
 
 #include "rawlog_io/atomic_file.h"
+#include "rawlog_io/ini_file.h"
 #include "rawlog_io/input_error.h"
 
 namespace rpvio {
 namespace {
-
-// Minimal INI reader keeping line numbers, so errors can name them.
-struct IniValue {
-  std::string text;
-  int line = 0;
-};
-using IniSections = std::map<std::string, std::map<std::string, IniValue>>;
-
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t\r");
-  if (b == std::string::npos) return "";
-  return s.substr(b, s.find_last_not_of(" \t\r") - b + 1);
-}
-
-IniSections parseIni(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "", "cannot open calibration file");
-  IniSections sections;
-  std::string section, raw;
-  for (int line = 1; std::getline(in, raw); ++line) {
-    const std::string s = trim(raw.substr(0, raw.find_first_of(";#")));
-    if (s.empty()) continue;
-    if (s.front() == '[') {
-      if (s.back() != ']') throw InputError(path, "line " + std::to_string(line), "bad section");
-      section = trim(s.substr(1, s.size() - 2));
-      continue;
-    }
-    const auto eq = s.find('=');
-    if (eq == std::string::npos || section.empty())
-      throw InputError(path, "line " + std::to_string(line), "expected 'key = value' in a section");
-    sections[section][trim(s.substr(0, eq))] = {trim(s.substr(eq + 1)), line};
-  }
-  return sections;
-}
-
-class IniLookup {
- public:
-  IniLookup(std::string path, IniSections sections)
-      : path_(std::move(path)), sections_(std::move(sections)) {}
-
-  bool has(const std::string& section, const std::string& key) const {
-    auto s = sections_.find(section);
-    return s != sections_.end() && s->second.count(key);
-  }
-
-  std::vector<double> numbers(const std::string& section, const std::string& key,
-                              size_t count) const {
-    if (!has(section, key))
-      throw InputError(path_, "[" + section + "]", "missing key '" + key + "'");
-    const IniValue& v = sections_.at(section).at(key);
-    std::istringstream ss(v.text);
-    std::vector<double> out;
-    std::string token;
-    while (ss >> token) {
-      char* end = nullptr;
-      const double x = std::strtod(token.c_str(), &end);
-      if (*end != '\0' || !std::isfinite(x))
-        throw InputError(path_, "line " + std::to_string(v.line),
-                         "'" + key + "': not a finite number: " + token);
-      out.push_back(x);
-    }
-    if (out.size() != count)
-      throw InputError(path_, "line " + std::to_string(v.line),
-                       "'" + key + "' needs " + std::to_string(count) + " number(s)");
-    return out;
-  }
-  double number(const std::string& section, const std::string& key) const {
-    return numbers(section, key, 1)[0];
-  }
-  double numberOr(const std::string& section, const std::string& key, double fallback) const {
-    return has(section, key) ? number(section, key) : fallback;
-  }
-  std::string text(const std::string& section, const std::string& key) const {
-    if (!has(section, key))
-      throw InputError(path_, "[" + section + "]", "missing key '" + key + "'");
-    return sections_.at(section).at(key).text;
-  }
-  int line(const std::string& section, const std::string& key) const {
-    return sections_.at(section).at(key).line;
-  }
-
- private:
-  std::string path_;
-  IniSections sections_;
-};
 
 const char* modelName(DistortionModel m) {
   switch (m) {
@@ -114,7 +30,7 @@ const char* modelName(DistortionModel m) {
 Calibration Calibration::load(const std::string& path) {
   if (!std::filesystem::is_regular_file(path))
     throw InputError(path, "", "calibration file not found");
-  const IniLookup ini(path, parseIni(path));
+  const IniFile ini(path);
   Calibration c;
   c.camera.width = static_cast<int>(ini.number("camera", "width"));
   c.camera.height = static_cast<int>(ini.number("camera", "height"));
