@@ -6,12 +6,12 @@
 namespace rpvio {
 
 struct TrackedFeature {
-  int id = -1;                                            // stable over the track's life
-  int plane_id = 0;                                       // mask label; 0 = no plane (vins-mono mode)
-  Eigen::Vector2d pixel = Eigen::Vector2d::Zero();        // distorted image coordinates (px)
-  Eigen::Vector2d normalized = Eigen::Vector2d::Zero();   // undistorted, z = 1 plane
-  Eigen::Vector2d velocity = Eigen::Vector2d::Zero();     // normalized coordinates per second
-  int track_length = 1;                                   // frames this feature has been tracked
+  int id = -1;                                      // stable over the track's life
+  int plane_id = 0;                                 // mask label; 0 = no plane (vins-mono mode)
+  Eigen::Vector2d pixel = Eigen::Vector2d::Zero();  // distorted image coordinates (px)
+  Eigen::Vector2d normalized = Eigen::Vector2d::Zero();  // undistorted, z = 1 plane
+  Eigen::Vector2d velocity = Eigen::Vector2d::Zero();    // normalized coordinates per second
+  int track_length = 1;                                  // frames this feature has been tracked
 };
 
 struct FeatureFrame {

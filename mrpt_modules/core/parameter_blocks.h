@@ -2,12 +2,14 @@
 // Layout of the Ceres parameter blocks shared by the IMU, vision and homography factors, the
 // initializer's bundle adjustment and the sliding-window estimator.
 //
-//   pose        double[7]  [px py pz qx qy qz qw]  body (IMU) pose in the world frame, Hamilton unit
+//   pose        double[7]  [px py pz qx qy qz qw]  body (IMU) pose in the world frame, Hamilton
+//   unit
 //                          quaternion in Eigen's coeffs() order; manifold: R^3 x EigenQuaternion.
 //                          The camera-IMU extrinsic T_BC uses the same layout (camera in body).
 //   speed_bias  double[9]  [vx vy vz bax bay baz bgx bgy bgz]  world-frame velocity, biases.
 //   inv_depth   double[1]  1/z of a feature in the camera frame of its first observation.
-//   plane       normal double[3] on the unit sphere (ceres::SphereManifold<3>) + distance double[1],
+//   plane       normal double[3] on the unit sphere (ceres::SphereManifold<3>) + distance
+//   double[1],
 //               world frame, points X on the plane satisfy n·X = d.
 //   time_offset double[1]  td with t_imu = t_cam + td.
 #include <Eigen/Geometry>

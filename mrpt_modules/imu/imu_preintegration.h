@@ -31,7 +31,7 @@ class ImuPreintegration {
   const Eigen::Vector3d& deltaV() const { return delta_v_; }
   const Eigen::Vector3d& linearizedBa() const { return ba_; }
   const Eigen::Vector3d& linearizedBg() const { return bg_; }
-  const Matrix15& jacobian() const { return jacobian_; }      // d(state_j error)/d(state_i error)
+  const Matrix15& jacobian() const { return jacobian_; }  // d(state_j error)/d(state_i error)
   const Matrix15& covariance() const { return covariance_; }
 
   /// Residual [rp, rq(3, vector part *2), rv, rba, rbg] of the states at i and j (world frame,

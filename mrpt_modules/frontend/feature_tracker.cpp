@@ -1,0 +1,237 @@
+#include "mrpt_modules/frontend/feature_tracker.h"
+
+#include <algorithm>
+#include <map>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/video/tracking.hpp>
+#include <unordered_map>
+
+#include "mrpt_modules/frontend/point_undistortion.h"
+
+namespace rpvio {
+
+TrackerOptions TrackerOptions::load(const IniFile& ini, const std::string& s) {
+  TrackerOptions o;
+  o.use_masks = ini.flagOr(s, "use_masks", o.use_masks);
+  o.erosion_kernel = static_cast<int>(ini.numberOr(s, "erosion_kernel", o.erosion_kernel));
+  o.erosion_iterations =
+      static_cast<int>(ini.numberOr(s, "erosion_iterations", o.erosion_iterations));
+  o.max_features = static_cast<int>(ini.numberOr(s, "max_features", o.max_features));
+  o.min_distance = ini.numberOr(s, "min_distance", o.min_distance);
+  o.klt_window = static_cast<int>(ini.numberOr(s, "klt_window", o.klt_window));
+  o.klt_levels = static_cast<int>(ini.numberOr(s, "klt_levels", o.klt_levels));
+  o.max_forward_backward_px = ini.numberOr(s, "max_forward_backward_px", o.max_forward_backward_px);
+  o.clahe = ini.flagOr(s, "clahe", o.clahe);
+  o.ransac.threshold_px = ini.numberOr(s, "ransac_threshold_px", o.ransac.threshold_px);
+  o.ransac.virtual_focal = ini.numberOr(s, "virtual_focal", o.ransac.virtual_focal);
+  return o;
+}
+
+FeatureTracker::FeatureTracker(const CameraIntrinsics& camera, const TrackerOptions& options)
+    : camera_(camera), options_(options) {}
+
+void FeatureTracker::warnOnce(const std::string& message) {
+  if (std::find(warned_.begin(), warned_.end(), message) != warned_.end()) return;
+  warned_.push_back(message);
+  warnings_.push_back(message);
+}
+
+std::vector<std::string> FeatureTracker::takeWarnings() {
+  std::vector<std::string> out;
+  out.swap(warnings_);
+  return out;
+}
+
+std::vector<FeatureTracker::Track> FeatureTracker::propagate(const cv::Mat& image,
+                                                             const cv::Mat& mask) {
+  std::vector<Track> kept;
+  if (tracks_.empty() || previous_image_.empty()) return kept;
+  std::vector<cv::Point2f> from, to, back;
+  for (const Track& tr : tracks_) from.push_back(tr.pixel);
+  std::vector<uchar> status, back_status;
+  std::vector<float> err;
+  const cv::Size window(options_.klt_window, options_.klt_window);
+  const cv::TermCriteria stop(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 0.01);
+  cv::calcOpticalFlowPyrLK(previous_image_, image, from, to, status, err, window,
+                           options_.klt_levels, stop);
+  back = from;  // initial guess for the backward pass
+  cv::calcOpticalFlowPyrLK(image, previous_image_, to, back, back_status, err, window,
+                           options_.klt_levels, stop, cv::OPTFLOW_USE_INITIAL_FLOW);
+  const cv::Rect inside(1, 1, image.cols - 2, image.rows - 2);
+  for (size_t i = 0; i < tracks_.size(); ++i) {
+    if (!status[i] || !back_status[i] || !inside.contains(to[i])) continue;
+    if (cv::norm(back[i] - from[i]) > options_.max_forward_backward_px) continue;
+    // The point must still lie on its own plane in the new mask.
+    if (options_.use_masks) {
+      const int label = mask.at<uint8_t>(cvRound(to[i].y), cvRound(to[i].x));
+      if (label != tracks_[i].plane_id) continue;
+    }
+    Track tr = tracks_[i];
+    tr.pixel = to[i];
+    ++tr.length;
+    kept.push_back(tr);
+  }
+  return kept;
+}
+
+void FeatureTracker::rejectOutliers(std::vector<Track>& tracks) const {
+  // Group by plane (one group without masks), test each group against its own model.
+  std::map<int, std::vector<size_t>> groups;
+  for (size_t i = 0; i < tracks.size(); ++i)
+    groups[options_.use_masks ? tracks[i].plane_id : 0].push_back(i);
+  std::unordered_map<int, cv::Point2f> previous_normalized;
+  for (const Track& p : tracks_) previous_normalized[p.id] = p.normalized;
+  std::vector<bool> keep(tracks.size(), true);
+  for (const auto& [plane, indices] : groups) {
+    std::vector<cv::Point2f> from, to;
+    for (size_t i : indices) {
+      from.push_back(previous_normalized.at(tracks[i].id));
+      to.push_back(tracks[i].normalized);
+    }
+    const std::vector<bool> inliers = options_.use_masks
+                                          ? homographyInliers(from, to, options_.ransac)
+                                          : fundamentalInliers(from, to, options_.ransac);
+    for (size_t k = 0; k < indices.size(); ++k) keep[indices[k]] = inliers[k];
+  }
+  std::vector<Track> out;
+  for (size_t i = 0; i < tracks.size(); ++i)
+    if (keep[i]) out.push_back(tracks[i]);
+  tracks.swap(out);
+}
+
+cv::Mat FeatureTracker::detectionMask(const cv::Mat& mask, const std::vector<Track>& kept) const {
+  cv::Mat allowed;
+  if (options_.use_masks) {
+    // Per-plane erosion in two passes: a pixel survives when its whole neighbourhood carries its
+    // own label (min == max of the labels around it) and that label is a plane.
+    const cv::Mat kernel = cv::getStructuringElement(
+        cv::MORPH_RECT, cv::Size(options_.erosion_kernel, options_.erosion_kernel));
+    cv::Mat lo, hi;
+    cv::erode(mask, lo, kernel, cv::Point(-1, -1), options_.erosion_iterations,
+              cv::BORDER_REPLICATE);
+    cv::dilate(mask, hi, kernel, cv::Point(-1, -1), options_.erosion_iterations,
+               cv::BORDER_REPLICATE);
+    allowed = (lo == hi) & (mask > 0) & (mask < 255);
+  } else {
+    allowed = cv::Mat(mask.size(), CV_8U, cv::Scalar(255));
+  }
+  for (const Track& tr : kept)
+    cv::circle(allowed, tr.pixel, static_cast<int>(options_.min_distance), cv::Scalar(0),
+               cv::FILLED);
+  return allowed;
+}
+
+FeatureFrame FeatureTracker::publish(double t, double dt) {
+  FeatureFrame frame;
+  frame.t = t;
+  std::unordered_map<int, cv::Point2f> previous_normalized;
+  for (const Track& p : previous_) previous_normalized[p.id] = p.normalized;
+  for (const Track& tr : tracks_) {
+    TrackedFeature f;
+    f.id = tr.id;
+    f.plane_id = tr.plane_id;
+    f.pixel = {tr.pixel.x, tr.pixel.y};
+    f.normalized = {tr.normalized.x, tr.normalized.y};
+    f.track_length = tr.length;
+    const auto prev = previous_normalized.find(tr.id);
+    if (prev != previous_normalized.end() && dt > 0)
+      f.velocity = {(tr.normalized.x - prev->second.x) / dt,
+                    (tr.normalized.y - prev->second.y) / dt};
+    frame.features.push_back(f);
+  }
+  return frame;
+}
+
+FeatureFrame FeatureTracker::track(double t, const cv::Mat& raw_image, const cv::Mat& raw_mask) {
+  const double dt = previous_image_.empty() ? 0 : t - previous_t_;
+  cv::Mat image = raw_image, mask = raw_mask;
+  bool usable = true;
+  if (image.empty() || image.type() != CV_8UC1) {
+    warnOnce("image empty or not 8-bit grey: no features");
+    usable = false;
+  } else if (options_.use_masks &&
+             (mask.empty() || mask.size() != image.size() || mask.type() != CV_8UC1)) {
+    warnOnce("plane mask missing or of another size than its image: no features");
+    usable = false;
+  }
+  if (!usable) {
+    tracks_.clear();
+    previous_.clear();
+    previous_image_.release();
+    return FeatureFrame{t, {}};
+  }
+  if (options_.clahe) {
+    cv::Mat equalized;
+    cv::createCLAHE(3.0, cv::Size(8, 8))->apply(image, equalized);
+    image = equalized;
+  }
+  if (!options_.use_masks) mask = cv::Mat(image.size(), CV_8U, cv::Scalar(0));
+
+  std::vector<Track> kept = propagate(image, mask);
+  if (!kept.empty()) {
+    std::vector<cv::Point2f> pixels;
+    for (const Track& tr : kept) pixels.push_back(tr.pixel);
+    const auto normalized = undistortToNormalized(pixels, camera_);
+    for (size_t i = 0; i < kept.size(); ++i) kept[i].normalized = normalized[i];
+    rejectOutliers(kept);
+  }
+  // Longest tracks first: they claim their neighbourhood before shorter ones.
+  std::stable_sort(kept.begin(), kept.end(),
+                   [](const Track& a, const Track& b) { return a.length > b.length; });
+  std::vector<Track> spaced;
+  cv::Mat taken(image.size(), CV_8U, cv::Scalar(0));
+  for (const Track& tr : kept) {
+    if (taken.at<uint8_t>(cvRound(tr.pixel.y), cvRound(tr.pixel.x))) continue;
+    spaced.push_back(tr);
+    cv::circle(taken, tr.pixel, static_cast<int>(options_.min_distance), cv::Scalar(255),
+               cv::FILLED);
+  }
+
+  const int wanted = options_.max_features - static_cast<int>(spaced.size());
+  if (wanted > 0) {
+    const cv::Mat allowed = detectionMask(mask, spaced);
+    std::vector<cv::Point2f> corners;
+    if (cv::countNonZero(allowed) > 0) {
+      cv::goodFeaturesToTrack(image, corners, wanted, 0.01, options_.min_distance, allowed);
+      if (corners.empty() && spaced.empty()) warnOnce("no corners found in the image");
+    } else if (spaced.empty()) {
+      warnOnce("no static plane visible in the mask: no features (waiting for planes)");
+    }
+    const auto normalized = undistortToNormalized(corners, camera_);
+    for (size_t i = 0; i < corners.size(); ++i) {
+      const int label = options_.use_masks
+                            ? raw_mask.at<uint8_t>(cvRound(corners[i].y), cvRound(corners[i].x))
+                            : 0;
+      spaced.push_back({next_id_++, label, 1, corners[i], normalized[i]});
+    }
+  }
+  previous_ = tracks_;
+  tracks_ = spaced;
+  previous_image_ = image;
+  previous_t_ = t;
+  return publish(t, dt);
+}
+
+double averageParallax(const FeatureFrame& a, const FeatureFrame& b, double virtual_focal) {
+  std::unordered_map<int, Eigen::Vector2d> in_a;
+  for (const auto& f : a.features) in_a[f.id] = f.normalized;
+  double sum = 0;
+  size_t n = 0;
+  for (const auto& f : b.features) {
+    const auto it = in_a.find(f.id);
+    if (it == in_a.end()) continue;
+    sum += virtual_focal * (f.normalized - it->second).norm();
+    ++n;
+  }
+  return n ? sum / n : 0.0;
+}
+
+size_t commonFeatures(const FeatureFrame& a, const FeatureFrame& b) {
+  std::unordered_map<int, bool> in_a;
+  for (const auto& f : a.features) in_a[f.id] = true;
+  size_t n = 0;
+  for (const auto& f : b.features) n += in_a.count(f.id);
+  return n;
+}
+
+}  // namespace rpvio

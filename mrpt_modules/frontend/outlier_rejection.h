@@ -1,0 +1,28 @@
+#pragma once
+// Geometric outlier rejection between consecutive frames (DESIGN.md §1 step 1): per static plane,
+// a homography fitted by RANSAC; without masks, a fundamental matrix. Both on normalized
+// coordinates re-projected to a virtual camera of focal `virtual_focal`, so the threshold is in
+// pixels whatever the real camera.
+#include <opencv2/core.hpp>
+#include <vector>
+
+namespace rpvio {
+
+struct RansacOptions {
+  double threshold_px = 1.0;
+  double virtual_focal = 460.0;
+  double confidence = 0.99;
+};
+
+/// Inlier flags of the homography RANSAC between matched normalized points (≥ 4 matches; with
+/// fewer, every point is kept). Returns the homography (virtual-camera pixels) in `H` if given.
+std::vector<bool> homographyInliers(const std::vector<cv::Point2f>& from,
+                                    const std::vector<cv::Point2f>& to,
+                                    const RansacOptions& options, cv::Mat* H = nullptr);
+
+/// Inlier flags of the fundamental-matrix RANSAC (≥ 8 matches; with fewer, all kept).
+std::vector<bool> fundamentalInliers(const std::vector<cv::Point2f>& from,
+                                     const std::vector<cv::Point2f>& to,
+                                     const RansacOptions& options);
+
+}  // namespace rpvio

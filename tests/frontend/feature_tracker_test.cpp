@@ -1,0 +1,128 @@
+// FeatureTracker on synthetic images: known motion, masks respected, degraded input handled.
+#include <gtest/gtest.h>
+
+#include <opencv2/imgproc.hpp>
+
+#include "mrpt_modules/frontend/feature_tracker.h"
+
+namespace rpvio {
+namespace {
+
+CameraIntrinsics camera() {
+  CameraIntrinsics c;
+  c.width = 640;
+  c.height = 480;
+  c.fx = c.fy = 400;
+  c.cx = 319.5;
+  c.cy = 239.5;
+  return c;
+}
+
+cv::Mat texture(int seed) {
+  cv::Mat img(480, 640, CV_8U);
+  cv::RNG rng(seed);
+  img.setTo(128);
+  for (int k = 0; k < 600; ++k) {
+    const cv::Point p(rng.uniform(0, 640), rng.uniform(0, 480));
+    cv::rectangle(img, p, p + cv::Point(rng.uniform(4, 30), rng.uniform(4, 30)),
+                  cv::Scalar(rng.uniform(0, 255)), cv::FILLED);
+  }
+  cv::GaussianBlur(img, img, cv::Size(3, 3), 0.8);
+  return img;
+}
+
+cv::Mat shifted(const cv::Mat& img, double dx, double dy) {
+  cv::Mat out;
+  const cv::Mat M = (cv::Mat_<double>(2, 3) << 1, 0, dx, 0, 1, dy);
+  cv::warpAffine(img, out, M, img.size(), cv::INTER_CUBIC, cv::BORDER_REFLECT);
+  return out;
+}
+
+TEST(FeatureTracker, FollowsAKnownSubpixelTranslation) {
+  const cv::Mat base = texture(1);
+  const cv::Mat mask(480, 640, CV_8U, cv::Scalar(3));  // one plane, id 3, everywhere
+  FeatureTracker tracker(camera(), TrackerOptions{});
+  const FeatureFrame f0 = tracker.track(0.0, base, mask);
+  ASSERT_GT(f0.features.size(), 100u);
+  EXPECT_LE(f0.features.size(), 150u);
+  const FeatureFrame f1 = tracker.track(0.05, shifted(base, 2.3, -1.7), mask);
+  std::map<int, Eigen::Vector2d> first;
+  for (const auto& f : f0.features) first[f.id] = f.pixel;
+  int common = 0;
+  for (const auto& f : f1.features) {
+    if (!first.count(f.id)) continue;
+    ++common;
+    EXPECT_EQ(f.plane_id, 3);
+    EXPECT_EQ(f.track_length, 2);
+    EXPECT_LT((f.pixel - first[f.id] - Eigen::Vector2d(2.3, -1.7)).norm(), 0.1);
+    EXPECT_NEAR(f.velocity.x(), 2.3 / 400 / 0.05, 0.1 / 400 / 0.05);
+  }
+  EXPECT_GT(common, 80);
+  EXPECT_NEAR(averageParallax(f0, f1), 460 * std::hypot(2.3, -1.7) / 400, 0.1);
+}
+
+TEST(FeatureTracker, DetectsOnlyInsideErodedPlanes) {
+  const cv::Mat img = texture(2);
+  cv::Mat mask(480, 640, CV_8U, cv::Scalar(0));
+  mask(cv::Rect(0, 0, 320, 480)).setTo(1);    // plane 1 on the left
+  mask(cv::Rect(320, 0, 200, 480)).setTo(2);  // plane 2, then a "character" (0) on the right
+  FeatureTracker tracker(camera(), TrackerOptions{});
+  const FeatureFrame f = tracker.track(0.0, img, mask);
+  ASSERT_GT(f.features.size(), 50u);
+  for (const auto& feat : f.features) {
+    EXPECT_TRUE(feat.plane_id == 1 || feat.plane_id == 2);
+    // Two 3x3 erosions keep every corner at least 2 px from another label.
+    EXPECT_GT(std::abs(feat.pixel.x() - 320), 1.5);
+    EXPECT_LT(feat.pixel.x(), 520 - 1.5);
+    EXPECT_EQ(feat.plane_id, feat.pixel.x() < 320 ? 1 : 2);
+  }
+}
+
+TEST(FeatureTracker, DegradedInputGivesNoFeaturesAndOneWarning) {
+  FeatureTracker tracker(camera(), TrackerOptions{});
+  const cv::Mat img = texture(3);
+  // Wrong-size mask.
+  EXPECT_TRUE(tracker.track(0.0, img, cv::Mat(240, 320, CV_8U, cv::Scalar(1))).features.empty());
+  EXPECT_TRUE(tracker.track(0.05, img, cv::Mat(240, 320, CV_8U, cv::Scalar(1))).features.empty());
+  auto warnings = tracker.takeWarnings();
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("size"), std::string::npos);
+  // All-zero mask: no planes.
+  EXPECT_TRUE(tracker.track(0.1, img, cv::Mat(480, 640, CV_8U, cv::Scalar(0))).features.empty());
+  warnings = tracker.takeWarnings();
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("no static plane"), std::string::npos);
+  // Blank image.
+  EXPECT_TRUE(tracker
+                  .track(0.15, cv::Mat(480, 640, CV_8U, cv::Scalar(90)),
+                         cv::Mat(480, 640, CV_8U, cv::Scalar(1)))
+                  .features.empty());
+  EXPECT_EQ(tracker.takeWarnings().size(), 1u);
+  // Recovers when good input returns.
+  EXPECT_GT(tracker.track(0.2, img, cv::Mat(480, 640, CV_8U, cv::Scalar(1))).features.size(), 50u);
+}
+
+TEST(FeatureTracker, HomographyRansacDropsAPointMovingOffItsPlane) {
+  const cv::Mat base = texture(4);
+  const cv::Mat mask(480, 640, CV_8U, cv::Scalar(1));
+  TrackerOptions options;
+  FeatureTracker tracker(camera(), options);
+  const FeatureFrame f0 = tracker.track(0.0, base, mask);
+  // Second image: shifted, plus one patch moved differently (an independently moving object
+  // wrongly labelled as plane).
+  cv::Mat next = shifted(base, 3.0, 0.0);
+  const auto& victim = f0.features.front();
+  const cv::Rect patch(cvRound(victim.pixel.x()) - 15, cvRound(victim.pixel.y()) - 15, 31, 31);
+  const cv::Rect inside = patch & cv::Rect(0, 0, 640, 480);
+  cv::Mat moved = shifted(base, 3.0, 6.0);
+  moved(inside).copyTo(next(inside));
+  const FeatureFrame f1 = tracker.track(0.05, next, mask);
+  for (const auto& f : f1.features) {
+    if (f.id != victim.id) continue;
+    // If it survived, it must have moved with the plane (within the RANSAC threshold).
+    EXPECT_LT((f.pixel - victim.pixel - Eigen::Vector2d(3.0, 0.0)).norm(), 1.5);
+  }
+}
+
+}  // namespace
+}  // namespace rpvio
