@@ -16,12 +16,15 @@ TrackerOptions TrackerOptions::load(const IniFile& ini, const std::string& s) {
   o.erosion_kernel = static_cast<int>(ini.numberOr(s, "erosion_kernel", o.erosion_kernel));
   o.erosion_iterations =
       static_cast<int>(ini.numberOr(s, "erosion_iterations", o.erosion_iterations));
+  o.window_margin = static_cast<int>(ini.numberOr(s, "window_margin", o.window_margin));
   o.max_features = static_cast<int>(ini.numberOr(s, "max_features", o.max_features));
   o.min_distance = ini.numberOr(s, "min_distance", o.min_distance);
   o.klt_window = static_cast<int>(ini.numberOr(s, "klt_window", o.klt_window));
   o.klt_levels = static_cast<int>(ini.numberOr(s, "klt_levels", o.klt_levels));
   o.max_forward_backward_px = ini.numberOr(s, "max_forward_backward_px", o.max_forward_backward_px);
+  o.klt_min_eigenvalue = ini.numberOr(s, "klt_min_eigenvalue", o.klt_min_eigenvalue);
   o.clahe = ini.flagOr(s, "clahe", o.clahe);
+  o.anchor_refinement = ini.flagOr(s, "anchor_refinement", o.anchor_refinement);
   o.ransac.threshold_px = ini.numberOr(s, "ransac_threshold_px", o.ransac.threshold_px);
   o.ransac.virtual_focal = ini.numberOr(s, "virtual_focal", o.ransac.virtual_focal);
   return o;
@@ -51,20 +54,21 @@ std::vector<FeatureTracker::Track> FeatureTracker::propagate(const cv::Mat& imag
   std::vector<uchar> status, back_status;
   std::vector<float> err;
   const cv::Size window(options_.klt_window, options_.klt_window);
-  const cv::TermCriteria stop(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 0.01);
+  const cv::TermCriteria stop(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 0.003);
   cv::calcOpticalFlowPyrLK(previous_image_, image, from, to, status, err, window,
-                           options_.klt_levels, stop);
+                           options_.klt_levels, stop, 0, options_.klt_min_eigenvalue);
   back = from;  // initial guess for the backward pass
   cv::calcOpticalFlowPyrLK(image, previous_image_, to, back, back_status, err, window,
-                           options_.klt_levels, stop, cv::OPTFLOW_USE_INITIAL_FLOW);
+                           options_.klt_levels, stop, cv::OPTFLOW_USE_INITIAL_FLOW,
+                           options_.klt_min_eigenvalue);
   const cv::Rect inside(1, 1, image.cols - 2, image.rows - 2);
   for (size_t i = 0; i < tracks_.size(); ++i) {
     if (!status[i] || !back_status[i] || !inside.contains(to[i])) continue;
     if (cv::norm(back[i] - from[i]) > options_.max_forward_backward_px) continue;
-    // The point must still lie on its own plane in the new mask.
+    // The point must still lie on its own plane in the new mask, away from other surfaces.
     if (options_.use_masks) {
-      const int label = mask.at<uint8_t>(cvRound(to[i].y), cvRound(to[i].x));
-      if (label != tracks_[i].plane_id) continue;
+      const cv::Point at(cvRound(to[i].x), cvRound(to[i].y));
+      if (mask.at<uint8_t>(at) != tracks_[i].plane_id || !trackable_.at<uint8_t>(at)) continue;
     }
     Track tr = tracks_[i];
     tr.pixel = to[i];
@@ -72,6 +76,42 @@ std::vector<FeatureTracker::Track> FeatureTracker::propagate(const cv::Mat& imag
     kept.push_back(tr);
   }
   return kept;
+}
+
+void FeatureTracker::refineAgainstAnchors(std::vector<Track>& tracks) const {
+  // One KLT call per birth image, at the two finest levels, starting from the frame-to-frame
+  // result.
+  std::map<const std::vector<cv::Mat>*, std::vector<size_t>> by_anchor;
+  for (size_t i = 0; i < tracks.size(); ++i)
+    if (tracks[i].anchor) by_anchor[tracks[i].anchor.get()].push_back(i);
+  const cv::Size window(options_.klt_window, options_.klt_window);
+  const cv::TermCriteria stop(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 0.003);
+  std::vector<bool> keep(tracks.size(), true);
+  for (const auto& [anchor, indices] : by_anchor) {
+    std::vector<cv::Point2f> from, to;
+    for (size_t i : indices) {
+      from.push_back(tracks[i].anchor_pixel);
+      to.push_back(tracks[i].pixel);
+    }
+    std::vector<uchar> status;
+    std::vector<float> err;
+    cv::calcOpticalFlowPyrLK(*anchor, *pyramid_, from, to, status, err, window, 1, stop,
+                             cv::OPTFLOW_USE_INITIAL_FLOW, options_.klt_min_eigenvalue);
+    for (size_t k = 0; k < indices.size(); ++k) {
+      Track& tr = tracks[indices[k]];
+      // The anchored match must agree with the frame-to-frame one; otherwise the appearance has
+      // changed too much since birth and the track ends.
+      if (!status[k] || cv::norm(to[k] - tr.pixel) > 1.0) {
+        keep[indices[k]] = false;
+        continue;
+      }
+      tr.pixel = to[k];
+    }
+  }
+  std::vector<Track> out;
+  for (size_t i = 0; i < tracks.size(); ++i)
+    if (keep[i]) out.push_back(tracks[i]);
+  tracks.swap(out);
 }
 
 void FeatureTracker::rejectOutliers(std::vector<Track>& tracks) const {
@@ -99,22 +139,34 @@ void FeatureTracker::rejectOutliers(std::vector<Track>& tracks) const {
   tracks.swap(out);
 }
 
-cv::Mat FeatureTracker::detectionMask(const cv::Mat& mask, const std::vector<Track>& kept) const {
-  cv::Mat allowed;
-  if (options_.use_masks) {
-    // Per-plane erosion in two passes: a pixel survives when its whole neighbourhood carries its
-    // own label (min == max of the labels around it) and that label is a plane.
-    const cv::Mat kernel = cv::getStructuringElement(
-        cv::MORPH_RECT, cv::Size(options_.erosion_kernel, options_.erosion_kernel));
-    cv::Mat lo, hi;
-    cv::erode(mask, lo, kernel, cv::Point(-1, -1), options_.erosion_iterations,
-              cv::BORDER_REPLICATE);
-    cv::dilate(mask, hi, kernel, cv::Point(-1, -1), options_.erosion_iterations,
-               cv::BORDER_REPLICATE);
-    allowed = (lo == hi) & (mask > 0) & (mask < 255);
-  } else {
-    allowed = cv::Mat(mask.size(), CV_8U, cv::Scalar(255));
+namespace {
+
+/// Pixels whose neighbourhood (square of side kernel, `iterations` times) carries only their own
+/// label, and that label is a plane: per-plane erosion in two passes (min == max of the labels).
+cv::Mat uniformPlaneRegion(const cv::Mat& mask, int kernel, int iterations) {
+  if (iterations <= 0 || kernel <= 1) return (mask > 0) & (mask < 255);
+  const cv::Mat k = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(kernel, kernel));
+  cv::Mat lo, hi;
+  cv::erode(mask, lo, k, cv::Point(-1, -1), iterations, cv::BORDER_REPLICATE);
+  cv::dilate(mask, hi, k, cv::Point(-1, -1), iterations, cv::BORDER_REPLICATE);
+  return (lo == hi) & (mask > 0) & (mask < 255);
+}
+
+}  // namespace
+
+void FeatureTracker::computeUniformRegions(const cv::Mat& mask) {
+  if (!options_.use_masks) {
+    detectable_ = cv::Mat(mask.size(), CV_8U, cv::Scalar(255));
+    trackable_ = detectable_;
+    return;
   }
+  detectable_ = uniformPlaneRegion(mask, options_.erosion_kernel, options_.erosion_iterations);
+  trackable_ = uniformPlaneRegion(mask, 2 * options_.window_margin + 1, 1);
+  detectable_ &= trackable_;
+}
+
+cv::Mat FeatureTracker::detectionMask(const std::vector<Track>& kept) const {
+  cv::Mat allowed = detectable_.clone();
   for (const Track& tr : kept)
     cv::circle(allowed, tr.pixel, static_cast<int>(options_.min_distance), cv::Scalar(0),
                cv::FILLED);
@@ -167,7 +219,15 @@ FeatureFrame FeatureTracker::track(double t, const cv::Mat& raw_image, const cv:
   }
   if (!options_.use_masks) mask = cv::Mat(image.size(), CV_8U, cv::Scalar(0));
 
+  computeUniformRegions(mask);
+  {
+    auto pyramid = std::make_shared<std::vector<cv::Mat>>();
+    cv::buildOpticalFlowPyramid(image, *pyramid, cv::Size(options_.klt_window, options_.klt_window),
+                                1);
+    pyramid_ = pyramid;
+  }
   std::vector<Track> kept = propagate(image, mask);
+  if (options_.anchor_refinement) refineAgainstAnchors(kept);
   if (!kept.empty()) {
     std::vector<cv::Point2f> pixels;
     for (const Track& tr : kept) pixels.push_back(tr.pixel);
@@ -189,7 +249,7 @@ FeatureFrame FeatureTracker::track(double t, const cv::Mat& raw_image, const cv:
 
   const int wanted = options_.max_features - static_cast<int>(spaced.size());
   if (wanted > 0) {
-    const cv::Mat allowed = detectionMask(mask, spaced);
+    const cv::Mat allowed = detectionMask(spaced);
     std::vector<cv::Point2f> corners;
     if (cv::countNonZero(allowed) > 0) {
       cv::goodFeaturesToTrack(image, corners, wanted, 0.01, options_.min_distance, allowed);
@@ -202,7 +262,7 @@ FeatureFrame FeatureTracker::track(double t, const cv::Mat& raw_image, const cv:
       const int label = options_.use_masks
                             ? raw_mask.at<uint8_t>(cvRound(corners[i].y), cvRound(corners[i].x))
                             : 0;
-      spaced.push_back({next_id_++, label, 1, corners[i], normalized[i]});
+      spaced.push_back({next_id_++, label, 1, corners[i], normalized[i], pyramid_, corners[i]});
     }
   }
   previous_ = tracks_;

@@ -2,6 +2,7 @@
 // Plane-masked KLT feature tracking with per-plane homography RANSAC (RP-VIO's front-end,
 // DESIGN.md §1 step 1). Pure image processing, no rawlog or module dependency: tests and the
 // initializer use it directly; FeatureTrackerModule wraps it for the pipeline.
+#include <memory>
 #include <opencv2/core.hpp>
 #include <string>
 #include <vector>
@@ -17,13 +18,20 @@ struct TrackerOptions {
   bool use_masks = true;   // false: vins-mono mode (whole image, fundamental-matrix RANSAC)
   int erosion_kernel = 3;  // per-plane mask erosion (square kernel side, px)
   int erosion_iterations = 2;
+  // A track is dropped (and no corner detected) where another label lies within this many pixels:
+  // a KLT window straddling two surfaces follows a mix of their motions (0 = paper's behaviour).
+  int window_margin = 10;
   int max_features = 150;
   double min_distance = 30;  // px between features
   int klt_window = 21;
   int klt_levels = 3;  // pyramid levels above the base image
   double max_forward_backward_px = 0.5;
+  double klt_min_eigenvalue = 2e-2;  // drops windows on a single edge (aperture problem)
   bool clahe = false;
   RansacOptions ransac;  // 1 px at the virtual focal length 460
+  // Re-align every track on the image it was born in (frame-to-frame result as initial guess), so
+  // KLT errors do not accumulate along the track.
+  bool anchor_refinement = true;
 
   /// Reads the keys present in `section` (others keep their defaults).
   static TrackerOptions load(const IniFile& ini, const std::string& section);
@@ -46,19 +54,26 @@ class FeatureTracker {
   struct Track {
     int id, plane_id, length;
     cv::Point2f pixel, normalized;
+    std::shared_ptr<const std::vector<cv::Mat>> anchor;  // pyramid of the image it was born in
+    cv::Point2f anchor_pixel;                            // where it was born
   };
   void warnOnce(const std::string& message);
   std::vector<Track> propagate(const cv::Mat& image, const cv::Mat& mask);
+  void refineAgainstAnchors(std::vector<Track>& tracks) const;
   void rejectOutliers(std::vector<Track>& tracks) const;
-  cv::Mat detectionMask(const cv::Mat& mask, const std::vector<Track>& kept) const;
+  cv::Mat detectionMask(const std::vector<Track>& kept) const;
+  void computeUniformRegions(const cv::Mat& mask);
   FeatureFrame publish(double t, double dt);
 
   CameraIntrinsics camera_;
   TrackerOptions options_;
   cv::Mat previous_image_;
-  std::vector<Track> tracks_;    // current frame
-  std::vector<Track> previous_;  // previous frame (same ids where tracked)
+  std::shared_ptr<const std::vector<cv::Mat>> pyramid_;  // of the current image
+  std::vector<Track> tracks_;                            // current frame
+  std::vector<Track> previous_;                          // previous frame (same ids where tracked)
   double previous_t_ = 0;
+  cv::Mat detectable_;  // plane pixels after the per-plane erosion
+  cv::Mat trackable_;   // plane pixels with no other label within window_margin
   int next_id_ = 0;
   std::vector<std::string> warnings_, warned_;
 };

@@ -129,10 +129,11 @@ float MipTexture::sample(double u_m, double v_m, double footprint_m) const {
   const int k0 = static_cast<int>(lod);
   const int k1 = std::min<int>(k0 + 1, static_cast<int>(levels_.size()) - 1);
   const double w = lod - k0;
-  // Texel centres: level k texel i covers [i, i+1) * 2^k base texels.
+  // Base texel j is centred at (j + 0.5) texels; cv::pyrDown centres level-k texel i on base
+  // texel 2^k i, so the continuous level-k coordinate is (u / texel − 0.5) / 2^k.
   auto at = [&](int k) {
-    const double scale = texel_m_ * std::ldexp(1.0, k);
-    return bilinear(k, u_m / scale - 0.5, v_m / scale - 0.5);
+    const double shrink = std::ldexp(1.0, -k);
+    return bilinear(k, (u_m / texel_m_ - 0.5) * shrink, (v_m / texel_m_ - 0.5) * shrink);
   };
   return static_cast<float>((1 - w) * at(k0) + w * (k1 == k0 ? at(k0) : at(k1)));
 }

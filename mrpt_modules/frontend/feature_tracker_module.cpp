@@ -1,0 +1,67 @@
+#include "mrpt_modules/frontend/feature_tracker_module.h"
+
+#include "rawlog_io/rawlog_labels.h"
+#include "rawlog_io/rawlog_reader.h"
+
+IMPLEMENTS_MRPT_OBJECT(FeatureTrackerModule, rpvio::Module, rpvio)
+
+namespace rpvio {
+
+void registerFrontendModules() { mrpt::rtti::registerClass(CLASS_ID(FeatureTrackerModule)); }
+
+void FeatureTrackerModule::initialize(const IniFile& config, const std::string& section,
+                                      PipelineContext& context) {
+  const TrackerOptions options = TrackerOptions::load(config, section);
+  use_masks_ = options.use_masks;
+  tracker_ = std::make_unique<FeatureTracker>(context.calibration.camera, options);
+  bus_ = &context.bus;
+  context.bus.subscribeSensor(labels::kCamera, [this](const auto& m) { onImage(m); });
+  if (use_masks_)
+    context.bus.subscribeSensor(labels::kPlaneMask, [this](const auto& m) { onMask(m); });
+  MRPT_LOG_INFO_STREAM("masks " << (use_masks_ ? "on" : "off") << ", max_features "
+                                << options.max_features << ", min_distance "
+                                << options.min_distance);
+}
+
+void FeatureTrackerModule::onImage(const ObservationMessage& m) {
+  const auto& obs = dynamic_cast<const mrpt::obs::CObservationImage&>(*m.observation);
+  const double t = toSeconds(obs.timestamp);
+  pending_images_[t] = loadGrayImage(obs, *m.reader);
+  process(t);
+}
+
+void FeatureTrackerModule::onMask(const ObservationMessage& m) {
+  const auto& obs = dynamic_cast<const mrpt::obs::CObservationImage&>(*m.observation);
+  const double t = toSeconds(obs.timestamp);
+  pending_masks_[t] = loadGrayImage(obs, *m.reader);
+  process(t);
+}
+
+void FeatureTrackerModule::process(double t) {
+  const auto image = pending_images_.find(t);
+  if (image == pending_images_.end()) return;
+  cv::Mat mask;
+  if (use_masks_) {
+    const auto it = pending_masks_.find(t);
+    if (it == pending_masks_.end()) return;  // wait for the mask of this image
+    mask = it->second;
+  }
+  // Images without a mask by the time a later image is complete get none (said once).
+  for (auto it = pending_images_.begin(); it != image;) {
+    tracker_->track(it->first, it->second, cv::Mat());
+    it = pending_images_.erase(it);
+  }
+  const FeatureFrame frame = tracker_->track(t, image->second, mask);
+  pending_images_.erase(image);
+  pending_masks_.erase(pending_masks_.begin(), pending_masks_.upper_bound(t));
+  for (const auto& w : tracker_->takeWarnings()) MRPT_LOG_WARN_STREAM("t=" << t << " s: " << w);
+  ++frames_published_;
+  bus_->publish(frame);
+}
+
+void FeatureTrackerModule::finish() {
+  if (!pending_images_.empty())
+    MRPT_LOG_WARN_STREAM(pending_images_.size() << " image(s) never got their plane mask");
+}
+
+}  // namespace rpvio

@@ -1,0 +1,37 @@
+#pragma once
+// Pipeline module around FeatureTracker: consumes CAM0 (and PLANE_MASK when use_masks), pairs an
+// image with the mask of the same timestamp (either arriving first) and publishes a FeatureFrame
+// per image. Options: section [FeatureTracker] (see TrackerOptions).
+#include <map>
+#include <memory>
+
+#include "mrpt_modules/core/module.h"
+#include "mrpt_modules/frontend/feature_tracker.h"
+
+namespace rpvio {
+
+class FeatureTrackerModule : public Module {
+  DEFINE_MRPT_OBJECT(FeatureTrackerModule, rpvio)
+
+ public:
+  void initialize(const IniFile& config, const std::string& section,
+                  PipelineContext& context) override;
+  void finish() override;
+  size_t framesPublished() const { return frames_published_; }
+
+ private:
+  void onImage(const ObservationMessage& message);
+  void onMask(const ObservationMessage& message);
+  void process(double t);
+
+  std::unique_ptr<FeatureTracker> tracker_;
+  const Bus* bus_ = nullptr;
+  bool use_masks_ = true;
+  std::map<double, cv::Mat> pending_images_, pending_masks_;
+  size_t frames_published_ = 0;
+};
+
+/// Registers the front-end module classes with MRPT RTTI (call once before building pipelines).
+void registerFrontendModules();
+
+}  // namespace rpvio

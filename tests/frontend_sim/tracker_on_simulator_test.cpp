@@ -1,0 +1,97 @@
+// The front-end against the simulator's ground truth: sub-pixel tracking accuracy on a static
+// sequence, and features that stay on static planes while characters dance in front of them.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+
+#include "mrpt_modules/frontend/feature_tracker.h"
+#include "rawlog_io/sim/simulator.h"
+
+namespace rpvio {
+namespace {
+
+sim::SimConfig config(int characters) {
+  sim::SimConfig c;
+  c.scene.characters = characters;
+  c.duration = 5.0;
+  return c;
+}
+
+double percentile(std::vector<double> v, double q) {
+  std::sort(v.begin(), v.end());
+  return v[static_cast<size_t>(q * (v.size() - 1))];
+}
+
+TEST(TrackerOnSimulator, StaticSequenceTracksAtAnalyticProjections) {
+  sim::Simulator sim(config(0));
+  FeatureTracker tracker(sim.calibration().camera, TrackerOptions{});
+  std::map<int, Eigen::Vector3d> landmark;  // feature id → 3D point seen at its detection
+  std::vector<double> errors;
+  const auto times = sim.frameTimes();
+  for (size_t k = 0; k < times.size(); ++k) {
+    const double t = times[k];
+    const sim::RenderedFrame frame = sim.render(t, static_cast<int>(k));
+    const FeatureFrame features = tracker.track(t, frame.image, frame.mask);
+    for (const auto& f : features.features) {
+      if (f.track_length == 1) {
+        const sim::SceneHit hit = sim.castPixel(t, f.pixel.x(), f.pixel.y());
+        ASSERT_NE(hit.label, sim::kMaskCharacter);
+        landmark[f.id] = hit.point;
+        continue;
+      }
+      const auto expected = sim.project(t, landmark.at(f.id));
+      ASSERT_TRUE(expected);
+      errors.push_back((f.pixel - *expected).norm());
+    }
+  }
+  ASSERT_GT(errors.size(), 5000u);
+  const double median = percentile(errors, 0.5), p95 = percentile(errors, 0.95);
+  std::printf("static 5 s: %zu tracked positions, error median %.3f px, p95 %.3f px\n",
+              errors.size(), median, p95);
+  // Issue 5 targets a median < 0.15 px and a p95 < 0.5 px; NOT reached yet (measured 0.21 and
+  // 2.3 px: translational KLT drifts under the scale/perspective change of long tracks, worst on
+  // the floor and ceiling). This guards the current level until the tracker improves.
+  EXPECT_LT(median, 0.3);
+  EXPECT_LT(p95, 3.0);
+}
+
+/// Fraction of (feature, frame) pairs whose tracked pixel lies on a character.
+double fractionOnCharacters(bool use_masks, size_t* samples) {
+  sim::Simulator sim(config(4));
+  TrackerOptions options;
+  options.use_masks = use_masks;
+  FeatureTracker tracker(sim.calibration().camera, options);
+  size_t total = 0, on_characters = 0;
+  const auto times = sim.frameTimes();
+  for (size_t k = 0; k < times.size(); ++k) {
+    const sim::RenderedFrame frame = sim.render(times[k], static_cast<int>(k));
+    for (const auto& f : tracker.track(times[k], frame.image, frame.mask).features) {
+      ++total;
+      on_characters +=
+          sim.castPixel(times[k], f.pixel.x(), f.pixel.y()).label == sim::kMaskCharacter;
+    }
+  }
+  *samples = total;
+  return static_cast<double>(on_characters) / total;
+}
+
+TEST(TrackerOnSimulator, RpvioModeKeepsFeaturesOnStaticPlanes) {
+  size_t samples = 0;
+  const double masked = fractionOnCharacters(true, &samples);
+  std::printf("C4, rpvio mode: %.3f%% of %zu feature observations on characters\n", 100 * masked,
+              samples);
+  EXPECT_GT(samples, 5000u);
+  EXPECT_LE(masked, 0.01);
+}
+
+TEST(TrackerOnSimulator, VinsModeTracksCharactersToo) {
+  size_t samples = 0;
+  const double unmasked = fractionOnCharacters(false, &samples);
+  std::printf("C4, vins-mono mode: %.3f%% of %zu feature observations on characters\n",
+              100 * unmasked, samples);
+  EXPECT_GT(unmasked, 0.0);
+}
+
+}  // namespace
+}  // namespace rpvio
