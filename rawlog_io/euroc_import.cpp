@@ -8,6 +8,7 @@
 #include <regex>
 #include <sstream>
 
+#include "rawlog_io/euroc_csv.h"
 #include "rawlog_io/input_error.h"
 #include "rawlog_io/rawlog_writer.h"
 #include "rawlog_io/text_table.h"
@@ -100,21 +101,6 @@ std::vector<ImageEntry> readImageList(const std::string& mav0) {
   return images;
 }
 
-std::vector<ImuSample> readImuCsv(const std::string& csv) {
-  std::vector<ImuSample> samples;
-  forEachTextRow(csv, [&](const std::vector<std::string>& f, int line) {
-    const auto v = parseNumberRow(f, 7, 7, csv, line);
-    ImuSample s;
-    s.t = v[0] * 1e-9;
-    if (!samples.empty() && s.t <= samples.back().t)
-      throw InputError(csv, "line " + std::to_string(line), "timestamps not increasing");
-    s.gyro = {v[1], v[2], v[3]};
-    s.accel = {v[4], v[5], v[6]};
-    samples.push_back(s);
-  });
-  return samples;
-}
-
 cv::Mat readGray(const std::string& file, const std::string& csv, size_t index) {
   // Checked first: OpenCV would print its own warning for a missing file.
   const cv::Mat img =
@@ -166,7 +152,7 @@ EurocImportCounts importEuroc(const EurocImportOptions& opt,
     throw InputError(opt.masks_dir, "", "masks folder not found");
   const Calibration calib = readEurocCalibration(opt.mav0_dir);
   const auto images = readImageList(opt.mav0_dir);
-  const auto imu = readImuCsv(opt.mav0_dir + "/imu0/data.csv");
+  const auto imu = readEurocImuCsv(opt.mav0_dir + "/imu0/data.csv");
   const Trajectory gt =
       opt.groundtruth_file.empty() ? Trajectory{} : readTrajectory(opt.groundtruth_file);
 
