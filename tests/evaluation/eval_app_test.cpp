@@ -74,3 +74,23 @@ TEST(EvalApp, MissingFileAndBadOption) {
 
 }  // namespace
 }  // namespace rpvio
+
+namespace rpvio {
+namespace {
+
+TEST(EvalApp, MixedFormatsEurocCsvAgainstTum) {
+  // A VIO estimate of EuRoC V1_02 (TUM) against its EuRoC CSV ground truth (ns stamps, w-first
+  // quaternions): a wrong unit or quaternion order would give metres of error.
+  std::string out;
+  ASSERT_EQ(test::runCommand(kEval + " --gt " + kEvo + "V102_groundtruth.csv --est " + kEvo +
+                                 "V102.txt --align se3",
+                             out),
+            0)
+      << out;
+  const double rmse = std::stod(out.substr(out.find("ATE_RMSE ") + 9));
+  EXPECT_GT(rmse, 0.01);
+  EXPECT_LT(rmse, 0.2);
+}
+
+}  // namespace
+}  // namespace rpvio
