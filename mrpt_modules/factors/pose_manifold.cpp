@@ -1,0 +1,48 @@
+#include "mrpt_modules/factors/pose_manifold.h"
+
+#include <Eigen/Geometry>
+
+#include "mrpt_modules/core/parameter_blocks.h"
+#include "mrpt_modules/imu/so3.h"
+
+namespace rpvio {
+
+bool PoseManifold::Plus(const double* x, const double* delta, double* out) const {
+  const Eigen::Quaterniond q =
+      (poseRotation(x) * expQuaternion(Eigen::Vector3d(delta[3], delta[4], delta[5]))).normalized();
+  for (int i = 0; i < 3; ++i) out[i] = x[i] + delta[i];
+  out[3] = q.x(), out[4] = q.y(), out[5] = q.z(), out[6] = q.w();
+  return true;
+}
+
+Eigen::Matrix<double, 7, 6> posePlusJacobian(const double* x) {
+  // d(q ⊗ [½δθ, 1])/dδθ in (x, y, z, w) order: ½ [w I + [v]× ; −vᵀ].
+  const Eigen::Quaterniond q = poseRotation(x);
+  Eigen::Matrix<double, 7, 6> J = Eigen::Matrix<double, 7, 6>::Zero();
+  J.topLeftCorner<3, 3>().setIdentity();
+  J.block<3, 3>(3, 3) = 0.5 * (q.w() * Eigen::Matrix3d::Identity() + hat(q.vec()));
+  J.block<1, 3>(6, 3) = -0.5 * q.vec().transpose();
+  return J;
+}
+
+bool PoseManifold::PlusJacobian(const double* x, double* jacobian) const {
+  Eigen::Map<Eigen::Matrix<double, 7, 6, Eigen::RowMajor>> J(jacobian);
+  J = posePlusJacobian(x);
+  return true;
+}
+
+bool PoseManifold::Minus(const double* y, const double* x, double* out) const {
+  const Eigen::AngleAxisd d(poseRotation(x).inverse() * poseRotation(y));
+  const Eigen::Vector3d w = d.angle() * d.axis();
+  for (int i = 0; i < 3; ++i) out[i] = y[i] - x[i], out[3 + i] = w[i];
+  return true;
+}
+
+bool PoseManifold::MinusJacobian(const double* x, double* jacobian) const {
+  Eigen::Matrix<double, 6, 6> I = Eigen::Matrix<double, 6, 6>::Identity();
+  Eigen::Map<Eigen::Matrix<double, 6, 7, Eigen::RowMajor>> J(jacobian);
+  J = tangentToAmbient<6>(I, x);
+  return true;
+}
+
+}  // namespace rpvio
