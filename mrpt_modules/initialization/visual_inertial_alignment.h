@@ -1,0 +1,40 @@
+#pragma once
+// Visual-inertial alignment (Qin et al. 2018, VINS-Mono §V-B, written anew): given the camera
+// trajectory of the first frames up to scale, in the frame of the first camera c0, and the IMU
+// preintegrations between them, recover the gyroscope bias, the metric scale, gravity in c0 and
+// every frame's velocity.
+#include <Eigen/Geometry>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mrpt_modules/imu/imu_preintegration.h"
+
+namespace rpvio {
+
+struct UpToScaleFrame {
+  Eigen::Matrix3d R_c0_c;                            // camera orientation in c0
+  Eigen::Vector3d p_c0_c;                            // camera position in c0, arbitrary scale
+  std::shared_ptr<ImuPreintegration> from_previous;  // IMU from the previous frame (null for 0)
+};
+
+struct AlignmentResult {
+  Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();
+  Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();  // change from the preintegrations' own
+  double scale = 0;                                      // metric = scale * p_c0_c
+  Eigen::Vector3d gravity_c0 = Eigen::Vector3d::Zero();
+  std::vector<Eigen::Vector3d> velocity_c0;  // body velocity of each frame, c0 frame
+};
+
+/// Gyro bias by least squares on the rotations between consecutive frames; repropagates the
+/// preintegrations with it. `T_BC`: camera in body.
+Eigen::Vector3d solveGyroBias(std::vector<UpToScaleFrame>& frames, const Eigen::Isometry3d& T_BC);
+
+/// Full alignment; on failure (negative scale, gravity magnitude far from `gravity`), nullopt and
+/// the reason in `why_not`.
+std::optional<AlignmentResult> alignVisualInertial(std::vector<UpToScaleFrame>& frames,
+                                                   const Eigen::Isometry3d& T_BC, double gravity,
+                                                   std::string* why_not = nullptr);
+
+}  // namespace rpvio
