@@ -1,0 +1,31 @@
+#pragma once
+// A persistent plane of the map: world plane n·X = d (unit n), its uncertainty, the points that
+// support it (bounded, voxel-decimated) and its extent (convex hull of the support in the plane).
+#include <Eigen/Core>
+#include <set>
+#include <vector>
+
+namespace rpvio {
+
+struct Plane {
+  int id = 0;                                                // stable map id
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();         // world frame, unit
+  double distance = 0;                                       // n·X = d
+  Eigen::Matrix4d covariance = Eigen::Matrix4d::Identity();  // of (n, d), ambient
+  std::vector<Eigen::Vector3d> support;                      // world points, decimated
+  std::vector<Eigen::Vector3d> polygon;  // convex hull of the support, on the plane
+  size_t observations = 0;
+  double first_seen = 0, last_seen = 0;  // s
+  std::set<int> mask_ids;                // labels it was seen as
+
+  /// Distance of a point to the plane (signed).
+  double signedDistance(const Eigen::Vector3d& x) const { return normal.dot(x) - distance; }
+  /// An orthonormal in-plane basis (u, v) with u × v = n, and the point of the plane nearest 0.
+  void planeFrame(Eigen::Vector3d& origin, Eigen::Vector3d& u, Eigen::Vector3d& v) const;
+  /// Recomputes `polygon` from `support` (2D convex hull in the plane frame).
+  void updatePolygon();
+  /// Voxel-grid decimation of `support` to one point per cell, at most `max_points` kept.
+  void decimateSupport(double voxel_size, size_t max_points);
+};
+
+}  // namespace rpvio

@@ -1,0 +1,44 @@
+#pragma once
+// Files a person can open, written at the end of a run (each via a temporary name + rename):
+//
+// planes.yaml — schema:
+//   planes:
+//     - id: 3                        # stable map id
+//       normal: [nx, ny, nz]         # unit, world frame
+//       d: 4.2                       # n·X = d (m)
+//       covariance: [16 numbers]     # row-major 4x4 of (n, d)
+//       polygon: [[x, y, z], ...]    # convex hull of the support, on the plane (m, world)
+//       support_points: 512          # decimated supporting points
+//       observations: 40             # updates fused into it
+//       first_seen: 1.25             # s
+//       last_seen: 79.9              # s
+//       mask_ids: [4, 17]            # labels it was seen as
+// planes.ply — ASCII PLY, each polygon triangulated as a fan, vertices coloured by plane id.
+// planes.bt — OctoMap (liboctomap binary) of the supporting points at `resolution` m.
+// planes.3Dscene — MRPT scene (SceneViewer3D): the polygons as coloured triangles.
+// planes_topview.png — polygons seen from above, coloured by id, with an optional trajectory.
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "planes_map/plane.h"
+#include "rawlog_io/trajectory_io.h"
+
+namespace rpvio {
+
+void writePlanesYaml(const std::string& path, const std::vector<Plane>& planes);
+/// Reads what writePlanesYaml wrote (id, normal, d, covariance, polygon, counts, times, mask ids;
+/// not the support points). InputError (file, line) on malformed content.
+std::vector<Plane> readPlanesYaml(const std::string& path);
+void writePlanesPly(const std::string& path, const std::vector<Plane>& planes);
+void writePlanesOctomap(const std::string& path, const std::vector<Plane>& planes,
+                        double resolution);
+void writePlanesScene(const std::string& path, const std::vector<Plane>& planes);
+void writePlanesTopView(const std::string& png_path, const std::vector<Plane>& planes,
+                        const Trajectory& trajectory = {});
+
+/// A colour per plane id (RGB, 0..255), shared by every exporter.
+std::array<uint8_t, 3> planeColour(int id);
+
+}  // namespace rpvio

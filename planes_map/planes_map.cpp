@@ -1,0 +1,142 @@
+#include "planes_map/planes_map.h"
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace rpvio {
+namespace {
+
+/// Smallest distance between two point sets (brute force on the decimated supports).
+double gapBetween(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b) {
+  double best = std::numeric_limits<double>::infinity();
+  for (const auto& p : a)
+    for (const auto& q : b) best = std::min(best, (p - q).squaredNorm());
+  return std::sqrt(best);
+}
+
+}  // namespace
+
+PlanesMapOptions PlanesMapOptions::load(const IniFile& ini, const std::string& s) {
+  PlanesMapOptions o;
+  o.max_normal_angle_deg = ini.numberOr(s, "max_normal_angle_deg", o.max_normal_angle_deg);
+  o.max_distance_m = ini.numberOr(s, "max_distance_m", o.max_distance_m);
+  o.max_gap_m = ini.numberOr(s, "max_gap_m", o.max_gap_m);
+  o.voxel_size_m = ini.numberOr(s, "voxel_size_m", o.voxel_size_m);
+  o.max_support_points = static_cast<size_t>(
+      ini.numberOr(s, "max_support_points", static_cast<double>(o.max_support_points)));
+  return o;
+}
+
+std::string PlanesMapOptions::describe() const {
+  std::ostringstream out;
+  out << "[PlanesMap] max_normal_angle_deg=" << max_normal_angle_deg
+      << " max_distance_m=" << max_distance_m << " max_gap_m=" << max_gap_m
+      << " voxel_size_m=" << voxel_size_m << " max_support_points=" << max_support_points;
+  return out.str();
+}
+
+bool PlanesMap::compatible(const Plane& plane, const Eigen::Vector3d& n, double d,
+                           const std::vector<Eigen::Vector3d>& points, bool same_label) const {
+  const double angle = std::acos(std::clamp(plane.normal.dot(n), -1.0, 1.0)) * 180 / M_PI;
+  if (angle > options_.max_normal_angle_deg ||
+      std::abs(plane.distance - d) > options_.max_distance_m)
+    return false;
+  if (same_label || points.empty() || plane.support.empty()) return true;
+  return gapBetween(plane.support, points) <= options_.max_gap_m;
+}
+
+void PlanesMap::fuse(Plane& plane, const PlaneObservation& obs) const {
+  // Information-weighted mean of (n, d) (covariances as given, inverted), n renormalized.
+  const Eigen::Matrix4d info_a = plane.covariance.inverse(), info_b = obs.covariance.inverse();
+  Eigen::Vector4d a, b;
+  a << plane.normal, plane.distance;
+  b << obs.normal, obs.distance;
+  const Eigen::Matrix4d info = info_a + info_b;
+  const Eigen::Vector4d fused = info.ldlt().solve(info_a * a + info_b * b);
+  const double norm = fused.head<3>().norm();
+  plane.normal = fused.head<3>() / norm;
+  plane.distance = fused(3) / norm;
+  plane.covariance = info.inverse();
+  plane.support.insert(plane.support.end(), obs.points.begin(), obs.points.end());
+  plane.decimateSupport(options_.voxel_size_m, options_.max_support_points);
+  plane.updatePolygon();
+  plane.observations += 1;
+  plane.last_seen = std::max(plane.last_seen, obs.time);
+  plane.first_seen = std::min(plane.first_seen, obs.time);
+  plane.mask_ids.insert(obs.mask_id);
+}
+
+int PlanesMap::update(const PlaneObservation& obs) {
+  Plane* target = nullptr;
+  const auto linked = mask_to_plane_.find(obs.mask_id);
+  if (linked != mask_to_plane_.end()) {
+    for (auto& p : planes_)
+      if (p.id == linked->second && compatible(p, obs.normal, obs.distance, obs.points, true))
+        target = &p;
+  }
+  if (!target) {
+    for (auto& p : planes_)
+      if (compatible(p, obs.normal, obs.distance, obs.points)) {
+        target = &p;
+        break;
+      }
+  }
+  if (!target) {
+    Plane p;
+    p.id = next_id_++;
+    p.normal = obs.normal.normalized();
+    p.distance = obs.distance;
+    p.covariance = obs.covariance;
+    p.support = obs.points;
+    p.decimateSupport(options_.voxel_size_m, options_.max_support_points);
+    p.updatePolygon();
+    p.observations = 1;
+    p.first_seen = p.last_seen = obs.time;
+    p.mask_ids.insert(obs.mask_id);
+    planes_.push_back(p);
+    mask_to_plane_[obs.mask_id] = p.id;
+    return p.id;
+  }
+  fuse(*target, obs);
+  mask_to_plane_[obs.mask_id] = target->id;
+  return target->id;
+}
+
+size_t PlanesMap::mergeDuplicates() {
+  size_t merged = 0;
+  for (size_t i = 0; i < planes_.size(); ++i)
+    for (size_t j = i + 1; j < planes_.size();) {
+      Plane& keep = planes_[i];
+      const Plane& other = planes_[j];
+      if (!compatible(keep, other.normal, other.distance, other.support)) {
+        ++j;
+        continue;
+      }
+      PlaneObservation as_observation{*other.mask_ids.begin(), other.normal,  other.distance,
+                                      other.covariance,        other.support, other.first_seen};
+      fuse(keep, as_observation);
+      keep.observations += other.observations - 1;
+      keep.last_seen = std::max(keep.last_seen, other.last_seen);
+      keep.mask_ids.insert(other.mask_ids.begin(), other.mask_ids.end());
+      for (auto& [mask, id] : mask_to_plane_)
+        if (id == other.id) id = keep.id;
+      planes_.erase(planes_.begin() + static_cast<long>(j));
+      ++merged;
+    }
+  return merged;
+}
+
+const Plane* PlanesMap::plane(int id) const {
+  for (const auto& p : planes_)
+    if (p.id == id) return &p;
+  return nullptr;
+}
+
+const Plane* PlanesMap::planeOfMask(int mask_id) const {
+  const auto it = mask_to_plane_.find(mask_id);
+  return it == mask_to_plane_.end() ? nullptr : plane(it->second);
+}
+
+}  // namespace rpvio

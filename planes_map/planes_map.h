@@ -1,0 +1,64 @@
+#pragma once
+// The persistent planes map (DESIGN.md §1 step 4): planes outlive the sliding window; a plane seen
+// again after leaving it gets its old id and parameters back instead of a new entry.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "planes_map/plane.h"
+#include "rawlog_io/ini_file.h"
+
+namespace rpvio {
+
+struct PlanesMapOptions {
+  double max_normal_angle_deg = 8.0;  // association: normals closer than this ...
+  double max_distance_m = 0.25;       // ... plane offsets closer than this ...
+  double max_gap_m = 1.0;             // ... and supports closer than this (no far-apart twins)
+  double voxel_size_m = 0.10;         // support decimation
+  size_t max_support_points = 3000;
+
+  /// Reads the keys present in `section`; InputError (file, line) on a bad value.
+  static PlanesMapOptions load(const IniFile& ini, const std::string& section);
+  std::string describe() const;
+};
+
+/// What the estimator knows of a plane after an optimization.
+struct PlaneObservation {
+  int mask_id = 0;
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+  double distance = 0;
+  Eigen::Matrix4d covariance = Eigen::Matrix4d::Identity() * 1e-2;
+  std::vector<Eigen::Vector3d> points;  // world points of its features
+  double time = 0;
+};
+
+class PlanesMap {
+ public:
+  explicit PlanesMap(const PlanesMapOptions& options = {}) : options_(options) {}
+
+  /// Associates the observation with an existing plane (the one its mask id currently maps to, or
+  /// any compatible one) and fuses it, or creates a new plane. Returns the map id.
+  int update(const PlaneObservation& observation);
+  /// Merges planes that have become the same surface; returns how many were merged away.
+  size_t mergeDuplicates();
+
+  const Plane* plane(int id) const;
+  /// The plane a mask label currently stands for, or nullptr.
+  const Plane* planeOfMask(int mask_id) const;
+  const std::vector<Plane>& planes() const { return planes_; }
+  const PlanesMapOptions& options() const { return options_; }
+
+ private:
+  /// Same orientation and offset; and, unless `same_label`, supports no farther apart than
+  /// max_gap_m (one mask label is one surface within the estimator's window).
+  bool compatible(const Plane& plane, const Eigen::Vector3d& n, double d,
+                  const std::vector<Eigen::Vector3d>& points, bool same_label = false) const;
+  void fuse(Plane& plane, const PlaneObservation& observation) const;
+
+  PlanesMapOptions options_;
+  std::vector<Plane> planes_;
+  std::map<int, int> mask_to_plane_;
+  int next_id_ = 1;
+};
+
+}  // namespace rpvio

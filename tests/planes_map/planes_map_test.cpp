@@ -1,0 +1,194 @@
+// The planes map on the simulator's warehouse, whose planes are known exactly: noisy observations
+// over two laps, association, merging and the exporters.
+#include <gtest/gtest.h>
+
+#include <mrpt/opengl/COpenGLScene.h>
+#include <octomap/OcTree.h>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <random>
+
+#include "planes_map/plane_map_exporters.h"
+#include "planes_map/planes_map.h"
+#include "rawlog_io/sim/warehouse_scene.h"
+#include "tests/test_util.h"
+
+namespace rpvio {
+namespace {
+
+const sim::WarehouseScene& scene() {
+  static const sim::WarehouseScene s = [] {
+    sim::SceneParams p;
+    p.texel_size = 0.2;  // textures are not used here
+    return sim::WarehouseScene(p);
+  }();
+  return s;
+}
+
+/// A noisy observation of part of a true plane, as an estimator would report it.
+PlaneObservation observe(const sim::ScenePlane& truth, int mask_id, double t,
+                         std::mt19937_64& rng) {
+  std::normal_distribution<double> g(0, 1);
+  std::uniform_real_distribution<double> u(0, 1);
+  PlaneObservation o;
+  o.mask_id = mask_id;
+  o.time = t;
+  const Eigen::Vector3d tilt = 0.5 * M_PI / 180 * Eigen::Vector3d(g(rng), g(rng), g(rng));
+  o.normal = (truth.normal + tilt - truth.normal * truth.normal.dot(tilt)).normalized();
+  o.distance = truth.distance() + 0.02 * g(rng);
+  o.covariance = Eigen::Matrix4d::Identity() * 1e-4;
+  // A random patch covering a third of the rectangle in each direction.
+  const double u0 = u(rng) * 0.66, v0 = u(rng) * 0.66;
+  for (int k = 0; k < 60; ++k) {
+    const double a = (u0 + 0.33 * u(rng)) * truth.width, b = (v0 + 0.33 * u(rng)) * truth.height;
+    o.points.push_back(truth.origin + a * truth.u_axis + b * truth.v_axis +
+                       0.01 * truth.normal * g(rng));
+  }
+  return o;
+}
+
+PlanesMap twoLaps(size_t* observed) {
+  PlanesMap map;
+  std::mt19937_64 rng(11);
+  *observed = 0;
+  for (int lap = 0; lap < 2; ++lap)
+    for (const auto& truth : scene().planes()) {
+      // Mask ids are not stable between laps (like a CNN's instance ids): lap 2 uses others.
+      for (int seen = 0; seen < 3; ++seen)
+        map.update(observe(truth, truth.id + 100 * lap, 40.0 * lap + seen, rng));
+      *observed += lap == 0;
+    }
+  map.mergeDuplicates();
+  return map;
+}
+
+TEST(PlanesMap, TwoLapsGiveEveryPlaneOnceAndAccurately) {
+  size_t distinct = 0;
+  const PlanesMap map = twoLaps(&distinct);
+  EXPECT_EQ(map.planes().size(), distinct);
+  double worst_angle = 0, worst_distance = 0;
+  for (const auto& truth : scene().planes()) {
+    // The map plane that holds this truth's lap-1 mask id must also hold its lap-2 id.
+    const Plane* p = map.planeOfMask(truth.id);
+    ASSERT_NE(p, nullptr);
+    EXPECT_TRUE(p->mask_ids.count(truth.id + 100)) << "plane " << truth.id << " duplicated";
+    worst_angle =
+        std::max(worst_angle, std::acos(std::min(1.0, p->normal.dot(truth.normal))) * 180 / M_PI);
+    worst_distance = std::max(worst_distance, std::abs(p->distance - truth.distance()));
+  }
+  std::printf("%zu planes; worst normal error %.2f deg, worst distance error %.3f m\n",
+              map.planes().size(), worst_angle, worst_distance);
+  EXPECT_LT(worst_angle, 2.0);
+  EXPECT_LT(worst_distance, 0.05);
+}
+
+TEST(PlanesMap, ParallelPlanesOneMetreApartStaySeparate) {
+  PlanesMap map;
+  PlaneObservation a;
+  a.mask_id = 1;
+  a.normal = Eigen::Vector3d::UnitX();
+  a.distance = 5.0;
+  for (int k = 0; k < 10; ++k) a.points.emplace_back(5.0, k * 0.3, 1.0);
+  PlaneObservation b = a;
+  b.mask_id = 2;
+  b.distance = 6.0;
+  for (auto& p : b.points) p.x() = 6.0;
+  EXPECT_NE(map.update(a), map.update(b));
+  EXPECT_EQ(map.mergeDuplicates(), 0u);
+  EXPECT_EQ(map.planes().size(), 2u);
+}
+
+TEST(PlanesMap, CoplanarButFarApartStaySeparateAndDuplicatesMerge) {
+  PlanesMap map;
+  PlaneObservation a;
+  a.mask_id = 1;
+  a.normal = Eigen::Vector3d::UnitZ();
+  a.distance = 1.0;
+  for (int k = 0; k < 10; ++k) a.points.emplace_back(k * 0.1, 0, 1.0);
+  PlaneObservation far = a;
+  far.mask_id = 2;
+  for (auto& p : far.points) p.x() += 10;  // another crate top at the same height
+  map.update(a);
+  map.update(far);
+  EXPECT_EQ(map.planes().size(), 2u);
+  // A third observation bridging both: the two become one surface.
+  PlaneObservation bridge = a;
+  bridge.mask_id = 3;
+  bridge.points.clear();
+  for (int k = 0; k < 100; ++k) bridge.points.emplace_back(k * 0.11, 0, 1.0);
+  map.update(bridge);
+  EXPECT_EQ(map.mergeDuplicates(), 1u);
+  EXPECT_EQ(map.planes().size(), 1u);
+}
+
+TEST(PlaneMapExporters, FilesParseBackAndLoad) {
+  size_t distinct = 0;
+  const PlanesMap map = twoLaps(&distinct);
+  test::TempDir dir;
+  writePlanesYaml(dir.file("planes.yaml"), map.planes());
+  const auto back = readPlanesYaml(dir.file("planes.yaml"));
+  ASSERT_EQ(back.size(), map.planes().size());
+  for (size_t k = 0; k < back.size(); ++k) {
+    const Plane& a = map.planes()[k];
+    EXPECT_EQ(back[k].id, a.id);
+    EXPECT_LT((back[k].normal - a.normal).norm(), 1e-8);
+    EXPECT_NEAR(back[k].distance, a.distance, 1e-8);
+    EXPECT_EQ(back[k].polygon.size(), a.polygon.size());
+    EXPECT_EQ(back[k].mask_ids, a.mask_ids);
+    EXPECT_EQ(back[k].observations, a.observations);
+  }
+
+  writePlanesPly(dir.file("planes.ply"), map.planes());
+  std::ifstream ply(dir.file("planes.ply"));
+  std::string line;
+  size_t vertices = 0, faces = 0, header_lines = 0;
+  while (std::getline(ply, line) && line != "end_header") {
+    ++header_lines;
+    std::sscanf(line.c_str(), "element vertex %zu", &vertices);
+    std::sscanf(line.c_str(), "element face %zu", &faces);
+  }
+  size_t expected_faces = 0, v_rows = 0, f_rows = 0;
+  for (const auto& p : map.planes())
+    expected_faces += p.polygon.size() >= 3 ? p.polygon.size() - 2 : 0;
+  EXPECT_EQ(faces, expected_faces);
+  for (size_t k = 0; k < vertices && std::getline(ply, line); ++k) {
+    double x, y, z;
+    int r, g, b;
+    v_rows += std::sscanf(line.c_str(), "%lf %lf %lf %d %d %d", &x, &y, &z, &r, &g, &b) == 6;
+  }
+  for (size_t k = 0; k < faces && std::getline(ply, line); ++k) {
+    size_t n, a, b, c;
+    f_rows +=
+        std::sscanf(line.c_str(), "%zu %zu %zu %zu", &n, &a, &b, &c) == 4 && n == 3 && c < vertices;
+  }
+  EXPECT_EQ(v_rows, vertices);
+  EXPECT_EQ(f_rows, faces);
+
+  const double resolution = 0.1;
+  writePlanesOctomap(dir.file("planes.bt"), map.planes(), resolution);
+  octomap::OcTree tree(dir.file("planes.bt"));
+  size_t occupied = 0, near_a_plane = 0;
+  for (auto it = tree.begin_leafs(); it != tree.end_leafs(); ++it) {
+    if (!tree.isNodeOccupied(*it)) continue;
+    ++occupied;
+    const Eigen::Vector3d c(it.getX(), it.getY(), it.getZ());
+    double best = 1e9;
+    for (const auto& truth : scene().planes())
+      best = std::min(best, std::abs(truth.normal.dot(c) - truth.distance()));
+    near_a_plane += best <= 2 * resolution;
+  }
+  EXPECT_GT(occupied, 100u);
+  EXPECT_EQ(near_a_plane, occupied);
+
+  writePlanesScene(dir.file("planes.3Dscene"), map.planes());
+  mrpt::opengl::COpenGLScene loaded;
+  EXPECT_TRUE(loaded.loadFromFile(dir.file("planes.3Dscene")));
+  EXPECT_GE(loaded.viewportsCount(), 1u);
+
+  writePlanesTopView(dir.file("top.png"), map.planes());
+  EXPECT_EQ(cv::imread(dir.file("top.png")).cols, 900);
+  if (const char* keep = std::getenv("RPVIO_KEEP_TOPVIEW")) writePlanesTopView(keep, map.planes());
+}
+
+}  // namespace
+}  // namespace rpvio
