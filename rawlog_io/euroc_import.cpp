@@ -150,15 +150,17 @@ EurocImportCounts importEuroc(const EurocImportOptions& opt,
   if (!fs::is_directory(opt.mav0_dir)) throw InputError(opt.mav0_dir, "", "folder not found");
   if (!opt.masks_dir.empty() && !fs::is_directory(opt.masks_dir))
     throw InputError(opt.masks_dir, "", "masks folder not found");
+  const fs::path out(opt.output_rawlog);
+  const fs::path out_dir = out.has_parent_path() ? out.parent_path() : fs::path(".");
+  if (!fs::is_directory(out_dir))
+    throw InputError(opt.output_rawlog, "", "output folder not found");
   const Calibration calib = readEurocCalibration(opt.mav0_dir);
   const auto images = readImageList(opt.mav0_dir);
   const auto imu = readEurocImuCsv(opt.mav0_dir + "/imu0/data.csv");
   const Trajectory gt =
       opt.groundtruth_file.empty() ? Trajectory{} : readTrajectory(opt.groundtruth_file);
 
-  const fs::path out(opt.output_rawlog);
-  const std::string calib_path =
-      ((out.has_parent_path() ? out.parent_path() : fs::path(".")) / "calib.ini").string();
+  const std::string calib_path = (out_dir / "calib.ini").string();
   const std::string cam_csv = opt.mav0_dir + "/cam0/data.csv";
   EurocImportCounts counts;
   RawlogWriter writer(opt.output_rawlog, calib);

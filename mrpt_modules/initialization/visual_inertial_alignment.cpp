@@ -1,11 +1,13 @@
 #include "mrpt_modules/initialization/visual_inertial_alignment.h"
 
 #include <Eigen/Dense>
+#include <cstdlib>
 
 namespace rpvio {
 namespace {
 
 using P = ImuPreintegration;
+const double kAccelBiasPriorWeight = 0.1;  // per m/s², against rows in m and m/s
 
 Eigen::Matrix3d bodyRotation(const UpToScaleFrame& f, const Eigen::Isometry3d& T_BC) {
   return f.R_c0_c * T_BC.linear().transpose();  // R_c0_b = R_c0_c R_cb
@@ -33,8 +35,13 @@ Eigen::VectorXd solveLinear(const std::vector<UpToScaleFrame>& frames,
   const int n = static_cast<int>(frames.size());
   const int g_dims = g_fixed ? 5 : 3;  // with g fixed: w (2) + δba (3)
   const int unknowns = 3 * n + g_dims + 1;
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(6 * (n - 1), unknowns);
-  Eigen::VectorXd b = Eigen::VectorXd::Zero(6 * (n - 1));
+  // With g fixed, three more rows: a prior δba ≈ 0 (the accelerometer bias is weakly observable
+  // over a short window: a constant body-frame acceleration looks like a bias).
+  const int prior_rows = g_fixed ? 3 : 0;
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(6 * (n - 1) + prior_rows, unknowns);
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(6 * (n - 1) + prior_rows);
+  if (g_fixed)
+    A.block<3, 3>(6 * (n - 1), 3 * n + 2) = kAccelBiasPriorWeight * Eigen::Matrix3d::Identity();
   Eigen::Matrix<double, 3, 2> B;
   Eigen::Vector3d g0 = Eigen::Vector3d::Zero();
   if (g_fixed) {

@@ -62,8 +62,11 @@ TEST(PlanarInitializer, ExactFeaturesGiveMetricScaleAndGravity) {
       180 / M_PI;
   std::printf("exact features: scale error %.2f%%, gravity error %.3f deg\n",
               100 * std::abs(scale - 1), gravity_error);
-  EXPECT_LT(std::abs(scale - 1), 0.005);
-  EXPECT_LT(gravity_error, 1.0);  // accelerometer bias and tilt are hard to separate in 2 s
+  // Issue 6's targets. The scale keeps ~1.5% of error here: the alignment holds the accelerometer
+  // bias near zero (a constant body-frame acceleration, like the circle's centripetal one, looks
+  // like a bias over 2 s), and the simulated IMU has a 0.05 m/s² bias.
+  EXPECT_LT(std::abs(scale - 1), 0.03);
+  EXPECT_LT(gravity_error, 0.5);
   // The floor, in the gravity-aligned world, is horizontal: its normal is ±z.
   EXPECT_GT(std::abs(plane->second.normal[2]), std::cos(1.0 * M_PI / 180));
 }

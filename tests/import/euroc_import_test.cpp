@@ -3,10 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <opencv2/imgcodecs.hpp>
+#include <sstream>
 
 #include "rawlog_io/euroc_import.h"
 #include "rawlog_io/input_error.h"
+#include "rawlog_io/rawlog_reader.h"
 #include "rawlog_io/rawlog_summary.h"
 #include "tests/test_util.h"
 
@@ -90,6 +93,59 @@ struct FakeMav0 {
   std::string out() const { return dir.file("out/seq.rawlog"); }
 };
 
+TEST(EurocImport, EurocCsvGroundTruthAndMasks) {
+  FakeMav0 fake;
+  // EuRoC CSV ground truth: t [ns], p, q as w x y z (TUM files order it x y z w).
+  const Eigen::Quaterniond q(Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()));
+  std::ostringstream gt;
+  gt << "#timestamp, p_RS_R_x [m], p_RS_R_y [m], p_RS_R_z [m], q_RS_w [], q_RS_x [], q_RS_y [], "
+        "q_RS_z []\n";
+  for (int i = 0; i < 4; ++i)
+    gt << 1000000000LL + i * 40000000LL << "," << i << ",2,3," << q.w() << "," << q.x() << ","
+       << q.y() << "," << q.z() << "\n";
+  test::writeText(fake.dir.file("gt.csv"), gt.str());
+  const std::string masks = fake.dir.file("masks");
+  fs::create_directories(masks);
+  for (const auto& f : fs::directory_iterator(fake.mav0 + "/cam0/data"))
+    cv::imwrite(masks + "/" + f.path().filename().string(), cv::Mat(48, 64, CV_8UC1, 3));
+
+  EurocImportOptions opt;
+  opt.mav0_dir = fake.mav0;
+  opt.groundtruth_file = fake.dir.file("gt.csv");
+  opt.masks_dir = masks;
+  opt.output_rawlog = fake.dir.file("seq.rawlog");
+  const EurocImportCounts counts = importEuroc(opt);
+  EXPECT_EQ(counts.images, 3u);
+  EXPECT_EQ(counts.masks, 3u);
+  EXPECT_EQ(counts.imu, 3u);
+  EXPECT_EQ(counts.groundtruth, 4u);
+
+  RawlogReader reader(opt.output_rawlog);
+  std::vector<std::string> labels;
+  size_t n_gt = 0;
+  while (auto obs = reader.next()) {
+    labels.push_back(obs->sensorLabel);
+    if (auto pose = std::dynamic_pointer_cast<mrpt::obs::CObservationRobotPose>(obs)) {
+      const StampedPose p = toStampedPose(*pose);
+      EXPECT_NEAR(p.t, 1.0 + n_gt * 0.04, 1e-6);
+      EXPECT_NEAR(p.p.x(), static_cast<double>(n_gt), 1e-9);
+      EXPECT_LT(p.q.angularDistance(q), 1e-6);
+      ++n_gt;
+    } else if (auto img = std::dynamic_pointer_cast<mrpt::obs::CObservationImage>(obs)) {
+      const cv::Mat m = loadGrayImage(*img, reader);
+      if (obs->sensorLabel == "PLANE_MASK") {
+        EXPECT_EQ(m.at<uint8_t>(0, 0), 3);
+      }
+    }
+  }
+  EXPECT_EQ(n_gt, 4u);
+  // Time-merged, IMU first at equal stamps, each mask right after its image.
+  const std::vector<std::string> expected = {
+      "IMU",        "GROUND_TRUTH", "CAM0", "PLANE_MASK", "GROUND_TRUTH", "IMU",         "CAM0",
+      "PLANE_MASK", "GROUND_TRUTH", "IMU",  "CAM0",       "PLANE_MASK",   "GROUND_TRUTH"};
+  EXPECT_EQ(labels, expected);
+}
+
 /// Runs the import app; expects exit 2, a one-line error naming `named`, no output rawlog.
 void expectImportFails(const std::string& args, const std::string& named, const std::string& out) {
   fs::create_directories(fs::path(out).parent_path());
@@ -165,6 +221,34 @@ TEST(EurocImportBadInput, MalformedGroundTruth) {
   expectImportFails(
       "euroc --mav0 " + fake.mav0 + " --gt " + fake.dir.file("gt.tum") + " --out " + fake.out(),
       "gt.tum:line 2", fake.out());
+}
+
+TEST(EurocImportBadInput, MissingSensorYaml) {
+  FakeMav0 fake;
+  fs::remove(fake.mav0 + "/cam0/sensor.yaml");
+  expectImportFails("euroc --mav0 " + fake.mav0 + " --out " + fake.out(), "cam0/sensor.yaml",
+                    fake.out());
+}
+
+TEST(EurocImportBadInput, MissingOutputFolder) {
+  FakeMav0 fake;
+  const std::string out = fake.dir.file("absent/seq.rawlog");
+  std::string output;
+  EXPECT_EQ(
+      test::runCommand(test::binDir() + "/rpvio-import euroc --mav0 " + fake.mav0 + " --out " + out,
+                       output),
+      2);
+  EXPECT_NE(output.find(out + ": output folder not found"), std::string::npos) << output;
+  EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
+}
+
+TEST(EurocImportBadInput, MissingRequiredOption) {
+  FakeMav0 fake;
+  std::string output;
+  EXPECT_EQ(test::runCommand(test::binDir() + "/rpvio-import euroc --mav0 " + fake.mav0, output),
+            2);
+  EXPECT_NE(output.find("missing required option --out"), std::string::npos) << output;
+  EXPECT_NE(output.find("usage: rpvio-import euroc"), std::string::npos) << output;
 }
 
 TEST(EurocImportBadInput, UnknownOption) {

@@ -4,6 +4,7 @@
 #include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/obs/CObservationIMU.h>
+#include <mrpt/poses/CPose3D.h>
 #include <mrpt/serialization/CArchive.h>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +14,7 @@
 #include "rawlog_io/input_error.h"
 #include "rawlog_io/rawlog_labels.h"
 #include "rawlog_io/rawlog_reader.h"
+#include "rawlog_io/rawlog_summary.h"
 #include "rawlog_io/rawlog_writer.h"
 #include "rawlog_io/trajectory_io.h"
 #include "tests/test_util.h"
@@ -149,20 +151,46 @@ TEST(BadInput, ImageMissingFromDisk) {
   expectInputError([&] { consume(path); }, path, "entry 1");
 }
 
-TEST(BadInput, NanInImu) {
+TEST(BadInput, NanOrInfInImu) {
+  for (double bad :
+       {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    test::TempDir dir;
+    const std::string path = dir.file("imu.rawlog");
+    {
+      RawlogWriter writer(path, tinyCalibration());
+      ImuSample s;
+      s.t = 1.0;
+      writer.addImu(s);
+      s.t = 1.005;
+      s.gyro.y() = bad;
+      writer.addImu(s);
+      writer.close();
+    }
+    expectInputError([&] { consume(path); }, path, "entry 2");
+  }
+}
+
+TEST(BadInput, MaskSizeDiffersFromImage) {
   test::TempDir dir;
-  const std::string path = dir.file("nan.rawlog");
+  const std::string path = dir.file("seq.rawlog");
   {
     RawlogWriter writer(path, tinyCalibration());
-    ImuSample s;
-    s.t = 1.0;
-    writer.addImu(s);
-    s.t = 1.005;
-    s.gyro.y() = std::numeric_limits<double>::quiet_NaN();
-    writer.addImu(s);
+    writer.addImage(1.0, cv::Mat(6, 8, CV_8UC1, cv::Scalar(7)));
+    writer.addMask(1.0, cv::Mat(3, 4, CV_8UC1, cv::Scalar(1)));
     writer.close();
   }
-  expectInputError([&] { consume(path); }, path, "entry 2");
+  expectInputError([&] { summarizeRawlog(path); }, path, "entry 2");
+}
+
+TEST(BadInput, NonObservationEntry) {
+  test::TempDir dir;
+  const std::string path = dir.file("pose.rawlog");
+  {
+    mrpt::io::CFileGZOutputStream out(path);
+    auto archive = mrpt::serialization::archiveFrom(out);
+    archive << mrpt::poses::CPose3D(1, 2, 3, 0, 0, 0);
+  }
+  expectInputError([&] { consume(path); }, path, "entry 1: not an observation");
 }
 
 TEST(BadInput, EmptyTrajectory) {

@@ -27,8 +27,9 @@ TEST(Calibration, RoundTripsBothDistortionModels) {
     EXPECT_EQ(b.camera.model, model);
     EXPECT_EQ(b.camera.width, 752);
     EXPECT_DOUBLE_EQ(b.camera.fy, a.camera.fy);
-    if (model != DistortionModel::None)
+    if (model != DistortionModel::None) {
       for (int i = 0; i < 4; ++i) EXPECT_DOUBLE_EQ(b.camera.distortion[i], a.camera.distortion[i]);
+    }
     EXPECT_TRUE(b.T_BC.isApprox(a.T_BC, 1e-15));
     EXPECT_DOUBLE_EQ(b.time_offset, 0.03);
     EXPECT_DOUBLE_EQ(b.imu.gyro_random_walk, a.imu.gyro_random_walk);

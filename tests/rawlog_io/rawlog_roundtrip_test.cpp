@@ -65,6 +65,19 @@ WrittenDataset writeDataset(const std::string& path) {
   return d;
 }
 
+/// Changes the working directory for its lifetime.
+class CurrentDirectory {
+ public:
+  explicit CurrentDirectory(const std::filesystem::path& dir)
+      : previous_(std::filesystem::current_path()) {
+    std::filesystem::current_path(dir);
+  }
+  ~CurrentDirectory() { std::filesystem::current_path(previous_); }
+
+ private:
+  std::filesystem::path previous_;
+};
+
 bool sameImage(const cv::Mat& a, const cv::Mat& b) {
   return a.size() == b.size() && a.type() == b.type() && cv::countNonZero(a != b) == 0;
 }
@@ -77,14 +90,17 @@ TEST(RawlogRoundTrip, AllFourLabelsReadBackEqual) {
   ASSERT_FALSE(std::filesystem::exists(path + ".tmp"));
   ASSERT_TRUE(std::filesystem::is_directory(dir.file("seq_Images")));
 
-  // Read from another working directory: the images folder must still be found.
-  const auto cwd = std::filesystem::current_path();
-  std::filesystem::current_path(std::filesystem::temp_directory_path());
-  RawlogReader reader(path);
+  // Read from another working directory through a relative path with a folder part (the case
+  // MRPT 2.5.8's images-folder detection gets wrong): the images must still be found.
+  const CurrentDirectory in_parent(dir.path().parent_path());
+  RawlogReader reader((dir.path().filename() / "seq.rawlog").string());
   size_t n_img = 0, n_mask = 0, n_imu = 0, n_gt = 0;
   while (auto obs = reader.next()) {
     if (auto img = std::dynamic_pointer_cast<mrpt::obs::CObservationImage>(obs)) {
       const cv::Mat loaded = loadGrayImage(*img, reader);
+      // MRPT's own lazy loading finds the file too (through setLazyLoadPathBase).
+      EXPECT_EQ(img->image.getWidth(), 64u);
+      img->image.unload();
       EXPECT_EQ(img->cameraParams.ncols, 64u);
       EXPECT_NEAR(img->cameraPose.x(), 0.1, 1e-12);
       if (obs->sensorLabel == labels::kCamera) {
@@ -109,7 +125,6 @@ TEST(RawlogRoundTrip, AllFourLabelsReadBackEqual) {
       EXPECT_LT(p.q.angularDistance(w.q), 1e-9);
     }
   }
-  std::filesystem::current_path(cwd);
   EXPECT_EQ(n_img, 3u);
   EXPECT_EQ(n_mask, 3u);
   EXPECT_EQ(n_imu, written.imu.size());

@@ -1,0 +1,63 @@
+// The estimator fed by the front-end on a simulated sequence (no rawlog): trajectory accuracy.
+#include <gtest/gtest.h>
+
+#include "apps/evaluation/trajectory_metrics.h"
+#include "mrpt_modules/estimator/sliding_window_estimator.h"
+#include "mrpt_modules/frontend/feature_tracker.h"
+#include "rawlog_io/sim/simulator.h"
+
+namespace rpvio {
+namespace {
+
+eval::EvalResult runOnSimulator(int characters, double duration, size_t* resets) {
+  sim::SimConfig config;
+  config.duration = duration;
+  config.scene.characters = characters;
+  sim::Simulator sim(config);
+  const auto imu = sim.imuStream();
+  FeatureTracker tracker(sim.calibration().camera, TrackerOptions{});
+  EstimatorOptions options;
+  SlidingWindowEstimator estimator(sim.calibration(), options);
+  Trajectory estimate, truth;
+  size_t previous = 0;
+  const auto times = sim.frameTimes();
+  for (size_t k = 0; k < times.size(); ++k) {
+    const double t = times[k];
+    const auto image = sim.render(t, static_cast<int>(k));
+    const FeatureFrame features = tracker.track(t, image.image, image.mask);
+    const size_t now = static_cast<size_t>(std::llround(t * config.imu.rate_hz));
+    std::vector<ImuSample> samples(imu.begin() + previous, imu.begin() + now + 1);
+    previous = now;
+    const auto state = estimator.addFrame(features, k == 0 ? std::vector<ImuSample>{} : samples);
+    StampedPose gt;
+    gt.t = t;
+    gt.p = sim.state(t).p;
+    gt.q = Eigen::Quaterniond(sim.state(t).R_wb);
+    truth.push_back(gt);
+    if (!state) continue;
+    StampedPose e;
+    e.t = t;
+    e.p = Eigen::Vector3d(state->pose[0], state->pose[1], state->pose[2]);
+    e.q = Eigen::Quaterniond(state->pose[6], state->pose[3], state->pose[4], state->pose[5]);
+    estimate.push_back(e);
+  }
+  *resets = estimator.resets();
+  eval::EvalOptions opt;
+  opt.align = eval::AlignMode::SE3;
+  return eval::evaluate(truth, estimate, opt);
+}
+
+TEST(EstimatorOnSimulator, StaticTwentySeconds) {
+  size_t resets = 0;
+  const auto r = runOnSimulator(0, 20.0, &resets);
+  std::printf("static 20 s: ATE RMSE %.3f m, coverage %.1f%%, resets %zu\n", r.ate.rmse,
+              100 * r.coverage, resets);
+  // Issue 7 targets ≤ 0.20 m over the 80 s sequences; the first estimator (no marginalization,
+  // one plane) is at about 0.73 m over these 20 s (~50 m): this guards that level.
+  EXPECT_LT(r.ate.rmse, 1.0);
+  EXPECT_GT(r.coverage, 0.85);  // initialization takes the first 2 s
+  EXPECT_EQ(resets, 0u);
+}
+
+}  // namespace
+}  // namespace rpvio
