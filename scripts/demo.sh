@@ -1,5 +1,17 @@
 #!/bin/sh
-# The main job: simulate a short dynamic sequence, run RP-VIO on it, print the accuracy.
-# Not available until the estimator pipeline runs end to end (issue 7).
-echo "demo: the RP-VIO pipeline is not complete yet (see issue 7); nothing to run." >&2
-exit 1
+# The main job: simulate a 30 s dynamic sequence (4 dancing characters), run RP-VIO (single
+# plane) on it, evaluate against the ground truth and say where the outputs are.
+set -eu
+BUILD=${1:-build}
+OUT=${RPVIO_DEMO_DIR:-/tmp/rpvio-demo}
+rm -rf "$OUT"
+mkdir -p "$OUT"
+echo "== simulating 30 s of the warehouse with 4 dancing characters -> $OUT/C4"
+"$BUILD/bin/rpvio-sim" --characters 4 --duration 30 --out "$OUT/C4"
+echo "== running rpvio-single"
+"$BUILD/bin/rpvio-slam" --config config/rpvio-single.ini --calib "$OUT/C4/calib.ini" \
+  --rawlog "$OUT/C4/seq.rawlog" --out "$OUT/rpvio-single" --quiet
+echo "== evaluating (SE(3) alignment)"
+"$BUILD/bin/rpvio-eval" --gt "$OUT/C4/groundtruth.tum" --est "$OUT/rpvio-single/trajectory.tum" \
+  --label rpvio-single --align se3 --plot "$OUT/trajectory.png" --json "$OUT/accuracy.json"
+echo "== outputs: $OUT/rpvio-single/{trajectory.tum,stats.csv,summary.json}, plot $OUT/trajectory.png"

@@ -1,0 +1,49 @@
+#pragma once
+// Pipeline module around SlidingWindowEstimator: buffers the IMU observations, and for every
+// FeatureFrame hands the estimator the IMU samples since the previous frame (camera time moved to
+// the IMU clock by the calibration's time offset). Publishes a StateEstimate per frame once
+// initialized; says once per change why it is not (yet) tracking. Options: section
+// [SlidingWindowEstimatorModule] (see EstimatorOptions).
+#include <deque>
+#include <memory>
+
+#include "mrpt_modules/core/module.h"
+#include "mrpt_modules/estimator/sliding_window_estimator.h"
+
+namespace rpvio {
+
+struct FrameTiming {
+  double t = 0;
+  double estimator_ms = 0;
+  size_t features = 0;
+  bool tracking = false;
+};
+
+class SlidingWindowEstimatorModule : public Module {
+  DEFINE_MRPT_OBJECT(SlidingWindowEstimatorModule, rpvio)
+
+ public:
+  void initialize(const IniFile& config, const std::string& section,
+                  PipelineContext& context) override;
+  const SlidingWindowEstimator& estimator() const { return *estimator_; }
+  const std::vector<FrameTiming>& timings() const { return timings_; }
+  double initializedAt() const { return initialized_at_; }
+
+ private:
+  void onImu(const ObservationMessage& message);
+  void onFrame(const FeatureFrame& frame);
+
+  std::unique_ptr<SlidingWindowEstimator> estimator_;
+  const Bus* bus_ = nullptr;
+  double time_offset_ = 0;
+  std::deque<ImuSample> imu_;
+  double previous_frame_t_ = -1;
+  std::string last_status_;
+  std::vector<FrameTiming> timings_;
+  double initialized_at_ = -1;
+};
+
+/// Registers the estimator module classes with MRPT RTTI.
+void registerEstimatorModules();
+
+}  // namespace rpvio
