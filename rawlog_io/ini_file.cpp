@@ -7,15 +7,10 @@
 #include <sstream>
 
 #include "rawlog_io/input_error.h"
+#include "rawlog_io/text_table.h"
 
 namespace rpvio {
 namespace {
-
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t\r");
-  if (b == std::string::npos) return "";
-  return s.substr(b, s.find_last_not_of(" \t\r") - b + 1);
-}
 
 std::string lineRef(int line) { return "line " + std::to_string(line); }
 

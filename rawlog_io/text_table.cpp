@@ -9,15 +9,12 @@
 #include "rawlog_io/input_error.h"
 
 namespace rpvio {
-namespace {
 
 std::string trim(const std::string& s) {
   const auto b = s.find_first_not_of(" \t\r");
   if (b == std::string::npos) return "";
   return s.substr(b, s.find_last_not_of(" \t\r") - b + 1);
 }
-
-}  // namespace
 
 std::vector<std::string> splitTextFields(const std::string& line) {
   std::vector<std::string> fields;

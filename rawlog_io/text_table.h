@@ -17,6 +17,9 @@ std::string firstTextRow(const std::string& path, int& line_number);
 /// Splits a data line on commas (when it has one) or whitespace.
 std::vector<std::string> splitTextFields(const std::string& line);
 
+/// The text without leading and trailing blanks (spaces, tabs, carriage returns).
+std::string trim(const std::string& s);
+
 /// A finite number, or InputError(path, "line N").
 double parseFiniteNumber(const std::string& token, const std::string& path, int line);
 
