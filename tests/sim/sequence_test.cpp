@@ -26,18 +26,11 @@ SimConfig shortConfig(uint64_t seed) {
   return c;
 }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 /// Every file of the folder (recursively), by relative path → bytes.
 std::map<std::string, std::string> folderContents(const fs::path& dir) {
   std::map<std::string, std::string> files;
   for (const auto& e : fs::recursive_directory_iterator(dir))
-    if (e.is_regular_file()) files[fs::relative(e.path(), dir).string()] = slurp(e.path());
+    if (e.is_regular_file()) files[fs::relative(e.path(), dir).string()] = test::readFile(e.path());
   return files;
 }
 
@@ -65,8 +58,9 @@ TEST(Sequence, SameSeedSameBytesDifferentSeedDifferentNoise) {
   EXPECT_GT(files_a.size(), 20u);
   EXPECT_TRUE(files_a == folderContents(b.path()));
   // Another seed: other noise (and another scene layout).
-  EXPECT_NE(slurp(a.path() / "groundtruth_biases.csv"), slurp(c.path() / "groundtruth_biases.csv"));
-  EXPECT_NE(slurp(a.path() / "seq.rawlog"), slurp(c.path() / "seq.rawlog"));
+  EXPECT_NE(test::readFile(a.path() / "groundtruth_biases.csv"),
+            test::readFile(c.path() / "groundtruth_biases.csv"));
+  EXPECT_NE(test::readFile(a.path() / "seq.rawlog"), test::readFile(c.path() / "seq.rawlog"));
 }
 
 TEST(Sequence, ConfigFileDocumentsTheBuiltInDefaults) {
