@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "mrpt_modules/core/pipeline.h"
+#include "mrpt_modules/estimator/estimator_module.h"
 #include "mrpt_modules/frontend/feature_tracker_module.h"
 #include "rawlog_io/input_error.h"
 #include "rawlog_io/sim/sequence_writer.h"
@@ -12,6 +13,7 @@ namespace {
 
 TEST(Pipeline, RpvioConfigTracksASimulatedRawlog) {
   registerFrontendModules();
+  registerEstimatorModules();
   test::TempDir dir;
   sim::SimConfig config;
   config.duration = 1.0;
