@@ -7,6 +7,7 @@
 
 #include "apps/evaluation/trajectory_plot.h"
 #include "apps/lib/command_line.h"
+#include "apps/lib/json_text.h"
 #include "rawlog_io/atomic_file.h"
 #include "rawlog_io/input_error.h"
 
@@ -36,15 +37,6 @@ std::string statsJson(const eval::ErrorStats& s) {
                 "\"min\": %.17g, \"max\": %.17g, \"count\": %zu}",
                 s.rmse, s.mean, s.median, s.std, s.min, s.max, s.count);
   return buf;
-}
-
-std::string jsonString(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
-  }
-  return out + "\"";
 }
 
 void writeJson(const EvalAppOptions& opt, const EvalAppResult& res) {

@@ -7,13 +7,17 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <iomanip>
 #include <iostream>
 
 #include "apps/lib/command_line.h"
+#include "apps/lib/json_text.h"
 #include "mrpt_modules/core/pipeline.h"
 #include "mrpt_modules/estimator/estimator_module.h"
 #include "mrpt_modules/frontend/feature_tracker_module.h"
+#include "planes_map/plane_map_exporters.h"
 #include "rawlog_io/atomic_file.h"
+#include "rawlog_io/rawlog_labels.h"
 #include "rawlog_io/trajectory_io.h"
 
 namespace fs = std::filesystem;
@@ -24,22 +28,43 @@ namespace {
 const char* kUsage =
     "usage: rpvio-slam --config config/<mode>.ini --calib DIR/calib.ini --rawlog DIR/seq.rawlog\n"
     "                  --out OUTDIR [--quiet]\n"
-    "  Plays the rawlog through the modules of the config and writes OUTDIR/trajectory.tum (body "
-    "in\n"
-    "  world, every frame once initialized), OUTDIR/stats.csv (per frame) and "
-    "OUTDIR/summary.json.\n";
+    "  Plays the rawlog through the modules of the config and writes to OUTDIR:\n"
+    "    trajectory.tum  body in world, every frame once initialized (a reset leaves a gap)\n"
+    "    stats.csv       per frame: t, frontend_ms, optimization_ms, total_ms, features, planes,\n"
+    "                    state\n"
+    "    summary.json    frames, initialization time, resets and causes, timing, real-time\n"
+    "                    factor, peak memory\n"
+    "    planes.{yaml,ply,bt,3Dscene}, planes_topview.png  the plane map\n";
+
+constexpr double kOctomapResolution = 0.1;  // m
 
 double percentile(std::vector<double> v, double q) {
   if (v.empty()) return 0;
   std::sort(v.begin(), v.end());
-  return v[static_cast<size_t>(q * (v.size() - 1))];
+  return v[static_cast<size_t>(q * static_cast<double>(v.size() - 1))];
 }
 
 double peakMemoryMb() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
-  return usage.ru_maxrss / 1024.0;  // kB on Linux
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // kB on Linux
 }
+
+/// Camera images in the rawlog's image folder (for the ETA; 0 when unknown).
+size_t countCameraImages(const std::string& rawlog) {
+  const fs::path p(rawlog);
+  const fs::path dir = p.parent_path() / (p.stem().string() + "_Images");
+  std::error_code ec;
+  size_t n = 0;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+    if (it->path().filename().string().rfind(labels::kCamera, 0) == 0) ++n;
+  return n;
+}
+
+/// Per-frame wall times: the whole pipeline since the previous frame, and the estimator's part.
+struct FrameRow {
+  double t = 0, total_ms = 0;
+};
 
 }  // namespace
 
@@ -60,47 +85,86 @@ int slamMain(int argc, char** argv) {
       p.q = Eigen::Quaterniond(s.pose[6], s.pose[3], s.pose[4], s.pose[5]);
       trajectory.push_back(p);
     });
+    // Subscribed after the modules: runs once the estimator has processed the frame.
     const bool terminal = isatty(STDERR_FILENO) && !cli.has("quiet");
-    const auto start = std::chrono::steady_clock::now();
-    size_t frames = 0;
-    pipeline.context().bus.subscribe<FeatureFrame>([&](const FeatureFrame&) {
-      ++frames;
-      if (terminal && frames % 10 == 0) {
-        const double s =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        std::fprintf(stderr, "\rframe %zu  %.1f frames/s   ", frames, frames / s);
+    const size_t expected_frames = terminal ? countCameraImages(cli.value("rawlog")) : 0;
+    using Clock = std::chrono::steady_clock;
+    const auto start = Clock::now();
+    auto frame_start = start;
+    std::vector<FrameRow> rows;
+    pipeline.context().bus.subscribe<FeatureFrame>([&](const FeatureFrame& f) {
+      const auto now = Clock::now();
+      rows.push_back({f.t, std::chrono::duration<double, std::milli>(now - frame_start).count()});
+      frame_start = now;
+      if (!terminal || rows.size() % 10 != 0) return;
+      const double s = std::chrono::duration<double>(now - start).count();
+      const double rate = static_cast<double>(rows.size()) / s;
+      std::fprintf(stderr, "\r%zu", rows.size());
+      if (expected_frames >= rows.size()) {
+        const int width = 30;
+        const int done = static_cast<int>(width * rows.size() / expected_frames);
+        std::fprintf(stderr, "/%zu [%s%s] ETA %.0f s", expected_frames,
+                     std::string(done, '#').c_str(), std::string(width - done, '.').c_str(),
+                     static_cast<double>(expected_frames - rows.size()) / rate);
       }
+      std::fprintf(stderr, "  %.1f frames/s   ", rate);
     });
     pipeline.play(cli.value("rawlog"));
     if (terminal) std::fprintf(stderr, "\n");
-    const double wall =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double wall = std::chrono::duration<double>(Clock::now() - start).count();
 
     fs::create_directories(out);
-    writeTum((fs::path(out) / "trajectory.tum").string(), trajectory);
+    const auto path = [&](const char* name) { return (fs::path(out) / name).string(); };
+    writeTum(path("trajectory.tum"), trajectory);
     const auto estimator = pipeline.find<SlidingWindowEstimatorModule>();
-    std::vector<double> ms;
-    if (estimator) {
-      writeFileAtomically((fs::path(out) / "stats.csv").string(), [&](std::ostream& s) {
-        s << "t,estimator_ms,features,tracking\n";
-        for (const auto& f : estimator->timings()) {
-          s << f.t << "," << f.estimator_ms << "," << f.features << "," << f.tracking << "\n";
-          ms.push_back(f.estimator_ms);
-        }
-      });
-    }
-    const double sequence_s = trajectory.empty() || frames == 0 ? 0 : frames / 20.0;
-    writeFileAtomically((fs::path(out) / "summary.json").string(), [&](std::ostream& s) {
-      s << "{\n  \"frames\": " << frames << ",\n  \"poses\": " << trajectory.size()
-        << ",\n  \"initialized_at\": " << (estimator ? estimator->initializedAt() : -1)
-        << ",\n  \"resets\": " << (estimator ? estimator->estimator().resets() : 0)
-        << ",\n  \"estimator_ms_median\": " << percentile(ms, 0.5)
-        << ",\n  \"estimator_ms_p95\": " << percentile(ms, 0.95) << ",\n  \"wall_s\": " << wall
-        << ",\n  \"real_time_factor_at_20hz\": " << (wall > 0 ? sequence_s / wall : 0)
+    std::vector<double> total_ms, optimization_ms, frontend_ms;
+    writeFileAtomically(path("stats.csv"), [&](std::ostream& s) {
+      s << "t,frontend_ms,optimization_ms,total_ms,features,planes,state\n";
+      s << std::fixed;
+      for (size_t k = 0; k < rows.size(); ++k) {
+        const FrameReport report = estimator && k < estimator->timings().size()
+                                       ? estimator->timings()[k].report
+                                       : FrameReport{"no estimator"};
+        total_ms.push_back(rows[k].total_ms);
+        optimization_ms.push_back(report.optimization_ms);
+        frontend_ms.push_back(std::max(0.0, rows[k].total_ms - report.optimization_ms));
+        s << std::setprecision(6) << rows[k].t << std::setprecision(3) << "," << frontend_ms.back()
+          << "," << optimization_ms.back() << "," << total_ms.back() << "," << report.features
+          << "," << report.planes << "," << report.state << "\n";
+      }
+    });
+    const double sequence_s = rows.size() < 2 ? 0 : rows.back().t - rows.front().t;
+    writeFileAtomically(path("summary.json"), [&](std::ostream& s) {
+      s << "{\n  \"frames\": " << rows.size() << ",\n  \"poses\": " << trajectory.size()
+        << ",\n  \"initialized_at\": " << (estimator ? estimator->initializedAt() : -1);
+      s << ",\n  \"resets\": " << (estimator ? estimator->estimator().resets() : 0)
+        << ",\n  \"reset_causes\": [";
+      if (estimator) {
+        const auto& log = estimator->estimator().resetLog();
+        for (size_t k = 0; k < log.size(); ++k)
+          s << (k ? ", " : "") << "{\"t\": " << log[k].t
+            << ", \"cause\": " << jsonString(log[k].cause) << "}";
+      }
+      s << "],\n  \"total_ms_median\": " << percentile(total_ms, 0.5)
+        << ",\n  \"total_ms_p95\": " << percentile(total_ms, 0.95)
+        << ",\n  \"frontend_ms_median\": " << percentile(frontend_ms, 0.5)
+        << ",\n  \"optimization_ms_median\": " << percentile(optimization_ms, 0.5)
+        << ",\n  \"optimization_ms_p95\": " << percentile(optimization_ms, 0.95)
+        << ",\n  \"wall_s\": " << wall << ",\n  \"sequence_s\": " << sequence_s
+        << ",\n  \"real_time_factor\": " << (wall > 0 ? sequence_s / wall : 0)
         << ",\n  \"peak_memory_mb\": " << peakMemoryMb() << "\n}\n";
     });
-    std::printf("%zu frames, %zu poses, wall %.1f s; outputs in %s\n", frames, trajectory.size(),
-                wall, out.c_str());
+    if (estimator) {
+      const auto& planes = estimator->estimator().planesMap().planes();
+      writePlanesYaml(path("planes.yaml"), planes);
+      writePlanesPly(path("planes.ply"), planes);
+      writePlanesOctomap(path("planes.bt"), planes, kOctomapResolution);
+      writePlanesScene(path("planes.3Dscene"), planes);
+      writePlanesTopView(path("planes_topview.png"), planes, trajectory);
+    }
+    std::printf("%zu frames, %zu poses, %zu resets, wall %.1f s; outputs in %s\n", rows.size(),
+                trajectory.size(), estimator ? estimator->estimator().resets() : 0, wall,
+                out.c_str());
     return 0;
   });
 }

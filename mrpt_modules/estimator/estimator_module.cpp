@@ -1,6 +1,6 @@
 #include "mrpt_modules/estimator/estimator_module.h"
 
-#include <chrono>
+#include <cmath>
 
 #include "rawlog_io/input_error.h"
 #include "rawlog_io/rawlog_labels.h"
@@ -17,16 +17,54 @@ void registerEstimatorModules() {
 void SlidingWindowEstimatorModule::initialize(const IniFile& ini, const std::string& s,
                                               PipelineContext& context) {
   EstimatorOptions o;
-  o.window_size =
-      static_cast<size_t>(ini.numberOr(s, "window_size", static_cast<double>(o.window_size)));
+  auto count = [&](const char* key, size_t fallback) {
+    const double v = ini.numberOr(s, key, static_cast<double>(fallback));
+    if (v < 0 || v != std::floor(v))
+      throw InputError(ini.path(), "line " + std::to_string(ini.line(s, key)),
+                       std::string(key) + " must be a non-negative integer");
+    return static_cast<size_t>(v);
+  };
+  o.window_size = count("window_size", o.window_size);
   o.keyframe_parallax_px = ini.numberOr(s, "keyframe_parallax_px", o.keyframe_parallax_px);
+  o.keyframe_min_tracks = count("keyframe_min_tracks", o.keyframe_min_tracks);
   o.max_keyframe_gap_s = ini.numberOr(s, "max_keyframe_gap_s", o.max_keyframe_gap_s);
-  o.all_planes = ini.flagOr(s, "all_planes", o.all_planes);
+  const std::string homography = ini.textOr(s, "homography_planes", "largest");
+  if (homography == "none")
+    o.homography_planes = HomographyPlanes::kNone;
+  else if (homography == "largest")
+    o.homography_planes = HomographyPlanes::kLargest;
+  else if (homography == "all")
+    o.homography_planes = HomographyPlanes::kAll;
+  else
+    throw InputError(ini.path(), "line " + std::to_string(ini.line(s, "homography_planes")),
+                     "homography_planes must be none, largest or all, not '" + homography + "'");
   o.pixel_sigma = ini.numberOr(s, "pixel_sigma", o.pixel_sigma);
   o.cauchy_scale = ini.numberOr(s, "cauchy_scale", o.cauchy_scale);
-  o.max_iterations = static_cast<int>(ini.numberOr(s, "max_iterations", o.max_iterations));
+  o.imu_noise_inflation = ini.numberOr(s, "imu_noise_inflation", o.imu_noise_inflation);
+  o.max_iterations = static_cast<int>(count("max_iterations", o.max_iterations));
+  o.max_solver_time_s = ini.numberOr(s, "max_solver_time_s", o.max_solver_time_s);
+  o.min_triangulation_angle_deg =
+      ini.numberOr(s, "min_triangulation_angle_deg", o.min_triangulation_angle_deg);
+  o.max_accel_bias = ini.numberOr(s, "max_accel_bias", o.max_accel_bias);
+  o.max_gyro_bias = ini.numberOr(s, "max_gyro_bias", o.max_gyro_bias);
+  o.max_jump_m = ini.numberOr(s, "max_jump_m", o.max_jump_m);
+  o.max_jump_deg = ini.numberOr(s, "max_jump_deg", o.max_jump_deg);
+  o.min_features = count("min_features", o.min_features);
+  o.max_blind_s = ini.numberOr(s, "max_blind_s", o.max_blind_s);
+  o.virtual_focal = ini.numberOr(s, "virtual_focal", o.virtual_focal);
+  const std::string initializer = ini.textOr(s, "initializer", "homography");
+  if (initializer == "homography")
+    o.init.method = InitializerMethod::kPlanarHomography;
+  else if (initializer == "essential")
+    o.init.method = InitializerMethod::kEssentialMatrix;
+  else
+    throw InputError(ini.path(), "line " + std::to_string(ini.line(s, "initializer")),
+                     "initializer must be homography or essential, not '" + initializer + "'");
   o.init.min_window_s = ini.numberOr(s, "init_window_s", o.init.min_window_s);
   o.init.min_parallax_px = ini.numberOr(s, "init_parallax_px", o.init.min_parallax_px);
+  o.init.virtual_focal = o.virtual_focal;
+  o.init.pixel_sigma = o.pixel_sigma;
+  o.planes_map = PlanesMapOptions::load(ini, "PlanesMap");
   if (o.window_size < 3)
     throw InputError(ini.path(), "[" + s + "]", "window_size must be at least 3");
   estimator_ = std::make_unique<SlidingWindowEstimator>(context.calibration, o);
@@ -34,8 +72,12 @@ void SlidingWindowEstimatorModule::initialize(const IniFile& ini, const std::str
   bus_ = &context.bus;
   context.bus.subscribeSensor(labels::kImu, [this](const auto& m) { onImu(m); });
   context.bus.subscribe<FeatureFrame>([this](const FeatureFrame& f) { onFrame(f); });
-  MRPT_LOG_INFO_STREAM("window " << o.window_size << ", planes "
-                                 << (o.all_planes ? "all" : "largest only"));
+  MRPT_LOG_INFO_STREAM("window " << o.window_size
+                                 << ", homography factors on planes: " << homography);
+}
+
+void SlidingWindowEstimatorModule::finish() {
+  if (estimator_->initialized()) estimator_->flushPlanes();
 }
 
 void SlidingWindowEstimatorModule::onImu(const ObservationMessage& m) {
@@ -54,18 +96,14 @@ void SlidingWindowEstimatorModule::onFrame(const FeatureFrame& camera_frame) {
   if (previous_frame_t_ < 0) samples.clear();
   previous_frame_t_ = frame.t;
 
-  const auto start = std::chrono::steady_clock::now();
   const auto state = estimator_->addFrame(frame, samples);
-  FrameTiming timing;
-  timing.t = frame.t;
-  timing.estimator_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  timing.features = frame.features.size();
-  timing.tracking = state.has_value();
-  timings_.push_back(timing);
+  timings_.push_back({frame.t, estimator_->lastReport()});
   if (estimator_->status() != last_status_) {
     last_status_ = estimator_->status();
-    MRPT_LOG_INFO_STREAM("t=" << frame.t << " s: " << last_status_);
+    if (estimator_->lastReport().state == "reset")
+      MRPT_LOG_WARN_STREAM("t=" << frame.t << " s: " << last_status_);
+    else
+      MRPT_LOG_INFO_STREAM("t=" << frame.t << " s: " << last_status_);
   }
   if (state) {
     if (initialized_at_ < 0) initialized_at_ = frame.t;

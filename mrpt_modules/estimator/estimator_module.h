@@ -12,11 +12,10 @@
 
 namespace rpvio {
 
+/// Per frame: the estimator's report (time, features and planes in use, state).
 struct FrameTiming {
-  double t = 0;
-  double estimator_ms = 0;
-  size_t features = 0;
-  bool tracking = false;
+  double t = 0;  // IMU clock
+  FrameReport report;
 };
 
 class SlidingWindowEstimatorModule : public Module {
@@ -27,6 +26,7 @@ class SlidingWindowEstimatorModule : public Module {
                   PipelineContext& context) override;
   const SlidingWindowEstimator& estimator() const { return *estimator_; }
   const std::vector<FrameTiming>& timings() const { return timings_; }
+  void finish() override;
   double initializedAt() const { return initialized_at_; }
 
  private:

@@ -2,310 +2,502 @@
 
 #include <ceres/ceres.h>
 #include <ceres/sphere_manifold.h>
+#include <Eigen/Dense>
+#include <chrono>
 #include <cmath>
-#include <set>
-#include <unordered_map>
 
 #include "mrpt_modules/core/parameter_blocks.h"
 #include "mrpt_modules/factors/homography_factor.h"
 #include "mrpt_modules/factors/imu_factor.h"
 #include "mrpt_modules/factors/pose_manifold.h"
+#include "mrpt_modules/factors/reprojection_factor.h"
 #include "mrpt_modules/frontend/feature_tracker.h"
 
 namespace rpvio {
 namespace {
 
-Eigen::Vector3d speed(const WindowFrame& f) { return Eigen::Vector3d(f.speed_bias); }
-Eigen::Vector3d accelBias(const WindowFrame& f) { return Eigen::Vector3d(f.speed_bias + 3); }
-Eigen::Vector3d gyroBias(const WindowFrame& f) { return Eigen::Vector3d(f.speed_bias + 6); }
+// Plane parameters handed to the planes map: standard deviation of (n, d) for one supporting
+// point; the map fuses observations by information.
+constexpr double kPlaneSigmaPerPoint = 0.05;
+constexpr size_t kMinPlanePoints = 10;
+// Planarity of the triangulated points of a new plane: their rms distance to the fitted plane, as
+// a fraction of their distance to the newest camera (triangulation error grows with depth).
+constexpr double kMaxPlaneRmsPerDepth = 0.04;
+constexpr double kMinDepth = 0.1, kMaxDepth = 100;
 
-/// Appends samples, skipping one equal to the last already there (frames share boundary samples).
+Eigen::Isometry3d bodyPose(const double* pose) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = poseRotation(pose).normalized().toRotationMatrix();
+  T.translation() = posePosition(pose);
+  return T;
+}
+
+/// Appends samples, skipping those not after the last one already there.
 void appendSamples(std::vector<ImuSample>& to, const std::vector<ImuSample>& from) {
   for (const auto& s : from)
     if (to.empty() || s.t > to.back().t) to.push_back(s);
 }
 
-/// Stand-in for the marginalization prior: the oldest keyframe stays near its last estimate with
-/// fixed standard deviations (position, rotation, velocity, biases).
-struct OldestStatePrior {
-  OldestStatePrior(const double* pose, const double* speed_bias) {
-    std::copy(pose, pose + 7, pose0);
-    std::copy(speed_bias, speed_bias + 9, sb0);
-  }
-  template <typename T>
-  bool operator()(const T* pose, const T* sb, T* r) const {
-    const Eigen::Quaternion<T> q(pose[6], pose[3], pose[4], pose[5]);
-    const Eigen::Quaternion<T> q0{T(pose0[6]), T(pose0[3]), T(pose0[4]), T(pose0[5])};
-    const Eigen::Quaternion<T> dq = q0.conjugate() * q;
-    for (int i = 0; i < 3; ++i) {
-      r[i] = (pose[i] - T(pose0[i])) / T(kSigmaPosition);
-      r[3 + i] = T(2) * dq.vec()[i] / T(kSigmaRotation);
-      r[6 + i] = (sb[i] - T(sb0[i])) / T(kSigmaVelocity);
-      r[9 + i] = (sb[3 + i] - T(sb0[3 + i])) / T(kSigmaAccelBias);
-      r[12 + i] = (sb[6 + i] - T(sb0[6 + i])) / T(kSigmaGyroBias);
-    }
-    return true;
-  }
-  static constexpr double kSigmaPosition = 0.1, kSigmaRotation = 0.02, kSigmaVelocity = 0.2,
-                          kSigmaAccelBias = 0.05, kSigmaGyroBias = 0.002;
-  double pose0[7], sb0[9];
-};
-
 }  // namespace
 
 SlidingWindowEstimator::SlidingWindowEstimator(const Calibration& calibration,
                                                const EstimatorOptions& options)
-    : calib_(calibration), options_(options) {}
+    : calib_(calibration),
+      options_(options),
+      initializer_(calibration, options.init),
+      planes_map_(options.planes_map) {
+  initializer_.setMinLoggingLevel(mrpt::system::LVL_WARN);  // the estimator reports the status
+  window_imu_noise_ = calib_.imu;
+  for (double* density :
+       {&window_imu_noise_.accel_noise_density, &window_imu_noise_.gyro_noise_density,
+        &window_imu_noise_.accel_random_walk, &window_imu_noise_.gyro_random_walk})
+    *density *= options_.imu_noise_inflation;
+  const Eigen::Quaterniond q(calib_.T_BC.linear());
+  const Eigen::Vector3d t = calib_.T_BC.translation();
+  const double m[7] = {t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w()};
+  std::copy(m, m + 7, mount_);
+}
 
 std::shared_ptr<ImuPreintegration> SlidingWindowEstimator::preintegrate(
-    const std::vector<ImuSample>& samples, const Eigen::Vector3d& ba,
-    const Eigen::Vector3d& bg) const {
-  auto pre = std::make_shared<ImuPreintegration>(samples.front().accel, samples.front().gyro, ba,
-                                                 bg, calib_.imu);
-  for (size_t k = 1; k < samples.size(); ++k)
-    pre->push(samples[k].t - samples[k - 1].t, samples[k].accel, samples[k].gyro);
+    const std::vector<ImuSample>& samples, double t0, double t1, const double* speed_bias,
+    const ImuNoise* noise) const {
+  if (samples.empty() || t1 <= t0) return nullptr;
+  // Samples held constant over their interval; the first one is interpolated at t0 when the next
+  // sample lies after t0, the last one extended to t1.
+  ImuSample first = samples.front();
+  if (samples.size() > 1 && first.t < t0 && samples[1].t > t0) {
+    const double a = (t0 - first.t) / (samples[1].t - first.t);
+    first.accel = (1 - a) * first.accel + a * samples[1].accel;
+    first.gyro = (1 - a) * first.gyro + a * samples[1].gyro;
+  }
+  auto pre = std::make_shared<ImuPreintegration>(
+      first.accel, first.gyro, Eigen::Vector3d(speed_bias + 3), Eigen::Vector3d(speed_bias + 6),
+      noise ? *noise : window_imu_noise_);
+  double t = t0;
+  for (size_t k = 1; k < samples.size(); ++k) {
+    if (samples[k].t <= t) continue;
+    pre->push(samples[k].t - t, samples[k].accel, samples[k].gyro);
+    t = samples[k].t;
+  }
+  if (t1 > t) pre->push(t1 - t, samples.back().accel, samples.back().gyro);
   return pre;
 }
 
-StateEstimate SlidingWindowEstimator::predict(double t) const {
-  const WindowFrame& last = window_.back();
-  StateEstimate s;
-  s.t = t;
-  std::copy(last.pose, last.pose + 7, s.pose);
-  if (pending_imu_.size() < 2) return s;
-  const auto pre = preintegrate(pending_imu_, accelBias(last), gyroBias(last));
+void SlidingWindowEstimator::predict(const Frame& from, Frame& to) const {
+  const ImuPreintegration& pre = *to.imu_from_previous;
   const Eigen::Vector3d g(0, 0, -calib_.imu.gravity);
-  const double T = pre->sumDt();
-  const Eigen::Quaterniond q = poseRotation(last.pose);
-  const Eigen::Vector3d p =
-      posePosition(last.pose) + speed(last) * T + 0.5 * g * T * T + q * pre->deltaP();
-  const Eigen::Quaterniond q_new = (q * pre->deltaQ()).normalized();
-  s.pose[0] = p.x(), s.pose[1] = p.y(), s.pose[2] = p.z();
-  s.pose[3] = q_new.x(), s.pose[4] = q_new.y(), s.pose[5] = q_new.z(), s.pose[6] = q_new.w();
-  return s;
+  const double T = pre.sumDt();
+  const Eigen::Quaterniond q = poseRotation(from.pose);
+  const Eigen::Vector3d v(from.speed_bias);
+  const Eigen::Vector3d p = posePosition(from.pose) + v * T + 0.5 * g * T * T + q * pre.deltaP();
+  const Eigen::Quaterniond q_new = (q * pre.deltaQ()).normalized();
+  const Eigen::Vector3d v_new = v + g * T + q * pre.deltaV();
+  const double pose[7] = {p.x(), p.y(), p.z(), q_new.x(), q_new.y(), q_new.z(), q_new.w()};
+  std::copy(pose, pose + 7, to.pose);
+  for (int i = 0; i < 3; ++i) to.speed_bias[i] = v_new[i];
+  std::copy(from.speed_bias + 3, from.speed_bias + 9, to.speed_bias + 3);
+}
+
+Eigen::Isometry3d SlidingWindowEstimator::camera(uint64_t frame_id) const {
+  for (const auto& f : window_)
+    if (f->id == frame_id) return bodyPose(f->pose) * calib_.T_BC;
+  return Eigen::Isometry3d::Identity();  // not reached: tracks only reference window frames
+}
+
+CameraPoseLookup SlidingWindowEstimator::cameraLookup() const {
+  return [this](uint64_t id) { return camera(id); };
+}
+
+bool SlidingWindowEstimator::inUse(const FeatureTrack& track) const {
+  return track.triangulated && track.observations.size() >= 2;
+}
+
+void SlidingWindowEstimator::choosePlanes() {
+  std::map<int, size_t> count;  // tracks per plane label in the window
+  for (const auto& [id, track] : features_.tracks())
+    if (track.plane_id > 0) ++count[track.plane_id];
+  if (options_.homography_planes != HomographyPlanes::kLargest) {
+    used_planes_.clear();
+    if (options_.homography_planes == HomographyPlanes::kAll)
+      for (const auto& [plane, n] : count) used_planes_.insert(plane);
+    return;
+  }
+  // Largest plane, with hysteresis: the current one stays while it keeps 70% of the best count.
+  int best = -1;
+  size_t best_count = 0;
+  for (const auto& [plane, n] : count)
+    if (n > best_count) best = plane, best_count = n;
+  const int current = used_planes_.empty() ? -1 : *used_planes_.begin();
+  if (current > 0 && count.count(current) && count[current] >= 0.7 * best_count) return;
+  used_planes_.clear();
+  if (best > 0) used_planes_.insert(best);
+}
+
+void SlidingWindowEstimator::initializePlanes() {
+  // A plane in use without parameters: the map's if it knows the label, else a least-squares fit
+  // of its triangulated features.
+  for (int plane : used_planes_) {
+    if (planes_.count(plane)) continue;
+    if (const Plane* known = planes_map_.planeOfMask(plane)) {
+      PlaneEstimate e;
+      for (int i = 0; i < 3; ++i) e.normal[i] = known->normal[i];
+      e.distance[0] = known->distance;
+      planes_[plane] = e;
+      continue;
+    }
+    std::vector<Eigen::Vector3d> points;
+    for (const auto& [id, track] : features_.tracks())
+      if (track.plane_id == plane && track.triangulated && track.observations.size() >= 3)
+        points.push_back(features_.worldPoint(track, cameraLookup()));
+    if (points.size() < kMinPlanePoints) continue;
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const auto& p : points) mean += p / points.size();
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (const auto& p : points) cov += (p - mean) * (p - mean).transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+    const double depth = (mean - camera(window_.back()->id).translation()).norm();
+    if (std::sqrt(eig.eigenvalues()(0) / points.size()) > kMaxPlaneRmsPerDepth * depth) continue;
+    Eigen::Vector3d n = eig.eigenvectors().col(0);
+    if (n.dot(mean) < 0) n = -n;  // convention: d ≥ 0
+    PlaneEstimate e;
+    for (int i = 0; i < 3; ++i) e.normal[i] = n[i];
+    e.distance[0] = n.dot(mean);
+    planes_[plane] = e;
+  }
+}
+
+void SlidingWindowEstimator::optimize() {
+  ceres::Problem::Options problem_options;
+  problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem problem(problem_options);
+  PoseManifold pose_manifold;
+  ceres::SphereManifold<3> sphere;
+  ceres::CauchyLoss loss(options_.cauchy_scale);
+  problem.AddParameterBlock(mount_, 7, &pose_manifold);
+  problem.SetParameterBlockConstant(mount_);
+  for (auto& f : window_) {
+    problem.AddParameterBlock(f->pose, 7, &pose_manifold);
+    problem.AddParameterBlock(f->speed_bias, 9);
+  }
+  const Eigen::Vector3d g(0, 0, -calib_.imu.gravity);
+  for (size_t k = 1; k < window_.size(); ++k)
+    problem.AddResidualBlock(new ImuFactor(window_[k]->imu_from_previous, g), nullptr,
+                             window_[k - 1]->pose, window_[k - 1]->speed_bias, window_[k]->pose,
+                             window_[k]->speed_bias);
+  std::map<uint64_t, double*> pose_of;
+  for (auto& f : window_) pose_of[f->id] = f->pose;
+  const double weight = options_.virtual_focal / options_.pixel_sigma;
+  const uint64_t newest = window_.back()->id;
+  report_.features = 0;
+  std::set<int> planes_with_factors;
+  for (auto& [id, track] : features_.tracks()) {
+    if (!inUse(track)) continue;
+    const TrackObservation& anchor = track.observations.front();
+    const auto plane = planes_.find(track.plane_id);
+    const bool homography = used_planes_.count(track.plane_id) && plane != planes_.end();
+    for (size_t k = 1; k < track.observations.size(); ++k) {
+      const TrackObservation& o = track.observations[k];
+      problem.AddResidualBlock(
+          ReprojectionResidual::create(anchor.normalized, o.normalized, weight), &loss,
+          pose_of[anchor.frame], pose_of[o.frame], mount_, track.inv_depth);
+      if (homography)
+        problem.AddResidualBlock(
+            HomographyResidual::create(anchor.normalized, o.normalized, weight), &loss,
+            pose_of[anchor.frame], pose_of[o.frame], mount_, plane->second.normal,
+            plane->second.distance);
+    }
+    if (homography) planes_with_factors.insert(track.plane_id);
+    if (track.observations.back().frame == newest) ++report_.features;
+  }
+  for (int plane : planes_with_factors) problem.SetManifold(planes_[plane].normal, &sphere);
+  report_.planes = planes_with_factors.size();
+  if (prior_) problem.AddResidualBlock(new MarginalizationFactor(prior_), nullptr, prior_->blocks);
+  if (!prior_) problem.SetParameterBlockConstant(window_.front()->pose);  // gauge before a prior
+
+  ceres::Solver::Options solver;
+  solver.trust_region_strategy_type = ceres::DOGLEG;
+  solver.linear_solver_type = ceres::DENSE_SCHUR;
+  solver.max_num_iterations = options_.max_iterations;
+  if (options_.max_solver_time_s > 0)
+    solver.max_solver_time_in_seconds = options_.max_solver_time_s;
+  solver.num_threads = 1;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, &problem, &summary);
+}
+
+void SlidingWindowEstimator::rejectDepthOutliers() {
+  for (auto& [id, track] : features_.tracks())
+    if (track.triangulated &&
+        (track.inv_depth[0] < 1.0 / kMaxDepth || track.inv_depth[0] > 1.0 / kMinDepth))
+      features_.untriangulate(track);
+}
+
+std::string SlidingWindowEstimator::failure(const double* predicted_pose) const {
+  const Frame& f = *window_.back();
+  for (double x : f.pose)
+    if (!std::isfinite(x)) return "non-finite state";
+  for (double x : f.speed_bias)
+    if (!std::isfinite(x)) return "non-finite state";
+  if (Eigen::Vector3d(f.speed_bias + 3).norm() > options_.max_accel_bias)
+    return "implausible accelerometer bias";
+  if (Eigen::Vector3d(f.speed_bias + 6).norm() > options_.max_gyro_bias)
+    return "implausible gyroscope bias";
+  if ((posePosition(f.pose) - posePosition(predicted_pose)).norm() > options_.max_jump_m)
+    return "position jump";
+  if (poseRotation(f.pose).angularDistance(poseRotation(predicted_pose)) * 180 / M_PI >
+      options_.max_jump_deg)
+    return "rotation jump";
+  if (f.features.t - last_seen_features_t_ > options_.max_blind_s) return "too few features";
+  return "";
+}
+
+bool SlidingWindowEstimator::secondNewestIsKeyframe() const {
+  const size_t n = window_.size();
+  if (n < 3) return true;
+  const FeatureFrame& previous_kf = window_[n - 3]->features;
+  const FeatureFrame& candidate = window_[n - 2]->features;
+  return averageParallax(previous_kf, candidate, options_.virtual_focal) >=
+             options_.keyframe_parallax_px ||
+         commonFeatures(previous_kf, candidate) < options_.keyframe_min_tracks ||
+         candidate.t - previous_kf.t >= options_.max_keyframe_gap_s;
+}
+
+void SlidingWindowEstimator::marginalizeOldest() {
+  Frame& oldest = *window_.front();
+  Frame& next = *window_[1];
+  Marginalizer marginalizer;
+  marginalizer.setConstant(mount_);
+  if (prior_)
+    marginalizer.addFactor(std::make_unique<MarginalizationFactor>(prior_), nullptr,
+                           prior_->blocks);
+  const Eigen::Vector3d g(0, 0, -calib_.imu.gravity);
+  marginalizer.addFactor(std::make_unique<ImuFactor>(next.imu_from_previous, g), nullptr,
+                         {oldest.pose, oldest.speed_bias, next.pose, next.speed_bias});
+  std::set<const double*> remove = {oldest.pose, oldest.speed_bias};
+  std::map<uint64_t, double*> pose_of;
+  for (auto& f : window_) pose_of[f->id] = f->pose;
+  const double weight = options_.virtual_focal / options_.pixel_sigma;
+  auto loss = std::make_shared<ceres::CauchyLoss>(options_.cauchy_scale);
+  for (auto& [id, track] : features_.tracks()) {
+    if (!inUse(track) || track.observations.front().frame != oldest.id) continue;
+    const TrackObservation& anchor = track.observations.front();
+    for (size_t k = 1; k < track.observations.size(); ++k) {
+      const TrackObservation& o = track.observations[k];
+      marginalizer.addFactor(std::unique_ptr<ceres::CostFunction>(ReprojectionResidual::create(
+                                 anchor.normalized, o.normalized, weight)),
+                             loss, {oldest.pose, pose_of[o.frame], mount_, track.inv_depth});
+    }
+    remove.insert(track.inv_depth);
+  }
+  prior_ = marginalizer.marginalize(remove);
+  flushPlanes();
+  features_.removeFrame(oldest.id, cameraLookup());
+  window_.pop_front();
+  window_.front()->imu_from_previous = nullptr;
+  window_.front()->imu.clear();
+  // Planes no longer seen live on in the map only.
+  std::set<int> seen;
+  for (const auto& [id, track] : features_.tracks()) seen.insert(track.plane_id);
+  for (auto it = planes_.begin(); it != planes_.end();)
+    it = seen.count(it->first) ? std::next(it) : planes_.erase(it);
+}
+
+void SlidingWindowEstimator::dropSecondNewest() {
+  const size_t n = window_.size();
+  Frame& dropped = *window_[n - 2];
+  Frame& newest = *window_[n - 1];
+  const Frame& before = *window_[n - 3];
+  if (prior_ && (prior_->involves(dropped.pose) || prior_->involves(dropped.speed_bias))) {
+    Marginalizer marginalizer;
+    marginalizer.addFactor(std::make_unique<MarginalizationFactor>(prior_), nullptr,
+                           prior_->blocks);
+    prior_ = marginalizer.marginalize({dropped.pose, dropped.speed_bias});
+  }
+  std::vector<ImuSample> merged = dropped.imu;
+  appendSamples(merged, newest.imu);
+  newest.imu = merged;
+  newest.imu_from_previous =
+      preintegrate(merged, before.features.t, newest.features.t, before.speed_bias);
+  features_.removeFrame(dropped.id, cameraLookup());
+  window_.erase(window_.end() - 2);
+}
+
+void SlidingWindowEstimator::flushPlanes() {
+  for (const auto& [mask, estimate] : planes_) {
+    PlaneObservation o;
+    o.mask_id = mask;
+    o.normal = Eigen::Vector3d(estimate.normal).normalized();
+    o.distance = estimate.distance[0];
+    for (const auto& [id, track] : features_.tracks())
+      if (track.plane_id == mask && track.triangulated)
+        o.points.push_back(features_.worldPoint(track, cameraLookup()));
+    if (o.points.size() < kMinPlanePoints) continue;
+    o.covariance = Eigen::Matrix4d::Identity() * kPlaneSigmaPerPoint * kPlaneSigmaPerPoint /
+                   static_cast<double>(o.points.size());
+    o.time = window_.back()->features.t;
+    planes_map_.update(o);
+  }
 }
 
 void SlidingWindowEstimator::tryInitialize() {
-  std::vector<WindowFrame> frames;
+  std::vector<FeatureFrame> frames;
+  std::vector<std::shared_ptr<ImuPreintegration>> imu;
+  const double zero[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
   for (size_t k = 0; k < init_buffer_.size(); ++k) {
-    WindowFrame f;
-    f.features = init_buffer_[k].features;
-    if (k > 0 && init_buffer_[k].imu.size() >= 2)
-      f.imu_from_previous =
-          preintegrate(init_buffer_[k].imu, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
-    else if (k > 0)
-      return;  // a frame without IMU: wait for a clean window
-    frames.push_back(f);
+    frames.push_back(init_buffer_[k].first);
+    imu.push_back(k == 0 ? nullptr
+                         : preintegrate(init_buffer_[k].second, init_buffer_[k - 1].first.t,
+                                        frames.back().t, zero, &calib_.imu));
+    if (k > 0 && !imu.back()) return;  // a frame without IMU: wait for a clean window
   }
-  const auto plane = initializeFromPlane(frames, calib_, options_.init, &status_);
-  if (!plane) return;
+  const InitializationResult init = initializer_.tryInitialize(frames, imu);
+  status_ = init.ok() ? "tracking" : toString(init.status);
+  if (!init.ok()) return;
   // Keyframes: evenly spaced over the initialization window, ending at its newest frame.
   const size_t n = frames.size();
   const size_t step =
       std::max<size_t>(1, (n - 1 + options_.window_size - 2) / (options_.window_size - 1));
   std::vector<size_t> chosen;
   for (long k = static_cast<long>(n) - 1; k >= 0; k -= static_cast<long>(step))
-    chosen.insert(chosen.begin(), k);
+    chosen.insert(chosen.begin(), static_cast<size_t>(k));
   window_.clear();
+  features_.clear();
+  prior_.reset();
   for (size_t c = 0; c < chosen.size(); ++c) {
-    WindowFrame kf = frames[chosen[c]];
-    kf.imu_from_previous = nullptr;
-    if (c > 0) {
-      std::vector<ImuSample> samples;
-      for (size_t k = chosen[c - 1] + 1; k <= chosen[c]; ++k)
-        appendSamples(samples, init_buffer_[k].imu);
-      kf.imu_from_previous = preintegrate(samples, accelBias(kf), gyroBias(kf));
+    auto f = std::make_unique<Frame>();
+    f->id = next_frame_id_++;
+    f->features = frames[chosen[c]];
+    const Eigen::Isometry3d& T = init.T_w_b[chosen[c]];
+    const Eigen::Quaterniond q(T.linear());
+    const double pose[7] = {
+        T.translation().x(), T.translation().y(), T.translation().z(), q.x(), q.y(), q.z(), q.w()};
+    std::copy(pose, pose + 7, f->pose);
+    for (int i = 0; i < 3; ++i) {
+      f->speed_bias[i] = init.v_w[chosen[c]][i];
+      f->speed_bias[3 + i] = init.ba[i];
+      f->speed_bias[6 + i] = init.bg[i];
     }
-    window_.push_back(kf);
+    if (c > 0) {
+      for (size_t k = chosen[c - 1] + 1; k <= chosen[c]; ++k)
+        appendSamples(f->imu, init_buffer_[k].second);
+      f->imu_from_previous =
+          preintegrate(f->imu, window_.back()->features.t, f->features.t, f->speed_bias);
+    }
+    features_.addFrame(f->id, f->features);
+    window_.push_back(std::move(f));
+  }
+  // The initializer's depths (camera of the feature's first frame in its window) moved to the
+  // anchors of this window.
+  std::map<uint64_t, size_t> init_index;
+  for (size_t c = 0; c < chosen.size(); ++c) init_index[window_[c]->id] = chosen[c];
+  for (auto& [id, track] : features_.tracks()) {
+    const auto depth = init.depths.find(id);
+    if (depth == init.depths.end()) continue;
+    const FeatureFrame& first = frames[depth->second.frame];
+    const auto seen = std::find_if(first.features.begin(), first.features.end(),
+                                   [&](const TrackedFeature& f) { return f.id == id; });
+    if (seen == first.features.end()) continue;
+    const Eigen::Vector3d X_w =
+        init.T_w_b[depth->second.frame] * calib_.T_BC *
+        (depth->second.depth * Eigen::Vector3d(seen->normalized.x(), seen->normalized.y(), 1));
+    const Eigen::Vector3d X_c = camera(track.observations.front().frame).inverse() * X_w;
+    if (X_c.z() < kMinDepth || X_c.z() > kMaxDepth) continue;
+    track.inv_depth[0] = 1.0 / X_c.z();
+    track.triangulated = true;
   }
   planes_.clear();
-  planes_[plane->first] = plane->second;
-  pending_imu_ = {init_buffer_.back().imu.back()};
+  for (const auto& [mask, plane] : init.planes) {
+    PlaneEstimate e;
+    for (int i = 0; i < 3; ++i) e.normal[i] = plane.n[i];
+    e.distance[0] = plane.d;
+    planes_[mask] = e;
+  }
   init_buffer_.clear();
   initialized_ = true;
-  status_ = "tracking";
+  last_seen_features_t_ = window_.back()->features.t;
+  choosePlanes();
+  features_.triangulate(cameraLookup(), options_.min_triangulation_angle_deg * M_PI / 180,
+                        kMinDepth, kMaxDepth);
   optimize();
-}
-
-void SlidingWindowEstimator::initializeMissingPlanes() {
-  // Planes seen in both the first and the newest keyframe get parameters from the features
-  // triangulated with the window's poses (midpoint of the two rays) and a least-squares plane.
-  const WindowFrame& a = window_.front();
-  const WindowFrame& b = window_.back();
-  std::unordered_map<int, const TrackedFeature*> in_a;
-  for (const auto& f : a.features.features) in_a[f.id] = &f;
-  std::map<int, std::vector<Eigen::Vector3d>> points;
-  const Eigen::Isometry3d T_BC = calib_.T_BC;
-  auto camera = [&](const WindowFrame& f) {
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.linear() = poseRotation(f.pose).toRotationMatrix();
-    T.translation() = posePosition(f.pose);
-    return T * T_BC;
-  };
-  const Eigen::Isometry3d Ca = camera(a), Cb = camera(b);
-  for (const auto& f : b.features.features) {
-    if (f.plane_id <= 0 || planes_.count(f.plane_id) || !in_a.count(f.id)) continue;
-    const Eigen::Vector3d da =
-        Ca.linear() * Eigen::Vector3d(in_a[f.id]->normalized.x(), in_a[f.id]->normalized.y(), 1);
-    const Eigen::Vector3d db = Cb.linear() * Eigen::Vector3d(f.normalized.x(), f.normalized.y(), 1);
-    const Eigen::Vector3d oa = Ca.translation(), ob = Cb.translation();
-    // Closest points of the two rays: solve [da −db] [s t]ᵀ ≈ ob − oa.
-    Eigen::Matrix<double, 3, 2> A;
-    A << da, -db;
-    const Eigen::Vector2d st = A.colPivHouseholderQr().solve(ob - oa);
-    if (st.x() <= 0 || st.y() <= 0) continue;
-    const double angle = std::acos(std::clamp(da.normalized().dot(db.normalized()), -1.0, 1.0));
-    if (angle < 0.5 * M_PI / 180) continue;  // too little parallax for this point
-    points[f.plane_id].push_back(0.5 * (oa + st.x() * da + ob + st.y() * db));
-  }
-  for (const auto& [id, pts] : points) {
-    if (pts.size() < 10) continue;
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    for (const auto& p : pts) mean += p / pts.size();
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (const auto& p : pts) cov += (p - mean) * (p - mean).transpose();
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-    const Eigen::Vector3d n = eig.eigenvectors().col(0);
-    if (eig.eigenvalues()(0) / pts.size() > 0.05 * 0.05) continue;  // not flat enough (σ > 5 cm)
-    PlaneEstimate e;
-    e.normal[0] = n.x(), e.normal[1] = n.y(), e.normal[2] = n.z();
-    e.distance[0] = n.dot(mean);
-    planes_[id] = e;
-  }
-}
-
-void SlidingWindowEstimator::optimize() {
-  // Planes used: every known plane (multi) or the known plane with most features (single).
-  std::map<int, int> count;
-  for (const auto& kf : window_)
-    for (const auto& f : kf.features.features)
-      if (planes_.count(f.plane_id)) ++count[f.plane_id];
-  std::set<int> used;
-  for (const auto& [id, c] : count)
-    if (options_.all_planes) used.insert(id);
-  if (!options_.all_planes && !count.empty())
-    used.insert(std::max_element(count.begin(), count.end(), [](const auto& x, const auto& y) {
-                  return x.second < y.second;
-                })->first);
-
-  ceres::Problem::Options problem_options;
-  problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  problem_options.loss_function_ownership = ceres::TAKE_OWNERSHIP;
-  ceres::Problem problem(problem_options);
-  PoseManifold pose_manifold;
-  ceres::SphereManifold<3> sphere;
-  double mount[7];
-  {
-    const Eigen::Quaterniond q(calib_.T_BC.linear());
-    const Eigen::Vector3d t = calib_.T_BC.translation();
-    const double m[7] = {t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w()};
-    std::copy(m, m + 7, mount);
-  }
-  problem.AddParameterBlock(mount, 7);
-  problem.SetParameterBlockConstant(mount);
-  for (auto& kf : window_) {
-    problem.AddParameterBlock(kf.pose, 7, &pose_manifold);
-    problem.AddParameterBlock(kf.speed_bias, 9);
-  }
-  const Eigen::Vector3d g(0, 0, -calib_.imu.gravity);
-  for (size_t k = 1; k < window_.size(); ++k)
-    problem.AddResidualBlock(new ImuFactor(window_[k].imu_from_previous, g), nullptr,
-                             window_[k - 1].pose, window_[k - 1].speed_bias, window_[k].pose,
-                             window_[k].speed_bias);
-  const double weight = options_.init.virtual_focal / options_.pixel_sigma;
-  std::unordered_map<int, std::pair<size_t, Eigen::Vector2d>> last_seen;
-  for (size_t k = 0; k < window_.size(); ++k)
-    for (const auto& f : window_[k].features.features) {
-      if (!used.count(f.plane_id)) continue;
-      const auto it = last_seen.find(f.id);
-      if (it != last_seen.end()) {
-        PlaneEstimate& plane = planes_[f.plane_id];
-        problem.AddResidualBlock(
-            HomographyResidual::create(it->second.second, f.normalized, weight),
-            new ceres::CauchyLoss(options_.cauchy_scale), window_[it->second.first].pose,
-            window_[k].pose, mount, plane.normal, plane.distance);
-      }
-      last_seen[f.id] = {k, f.normalized};
-    }
-  for (int id : used)
-    if (problem.HasParameterBlock(planes_[id].normal))
-      problem.SetManifold(planes_[id].normal, &sphere);
-  problem.AddResidualBlock(
-      new ceres::AutoDiffCostFunction<OldestStatePrior, 15, 7, 9>(
-          new OldestStatePrior(window_.front().pose, window_.front().speed_bias)),
-      nullptr, window_.front().pose, window_.front().speed_bias);
-  ceres::Solver::Options solver;
-  solver.trust_region_strategy_type = ceres::DOGLEG;
-  solver.linear_solver_type = ceres::DENSE_QR;
-  solver.max_num_iterations = options_.max_iterations;
-  solver.num_threads = 1;
-  ceres::Solver::Summary summary;
-  ceres::Solve(solver, &problem, &summary);
-}
-
-bool SlidingWindowEstimator::healthy() const {
-  const WindowFrame& f = window_.back();
-  for (double x : f.pose)
-    if (!std::isfinite(x)) return false;
-  return speed(f).norm() < 30 && accelBias(f).norm() < 2.0 && gyroBias(f).norm() < 0.5;
+  rejectDepthOutliers();
 }
 
 void SlidingWindowEstimator::reset(const std::string& cause) {
-  ++resets_;
+  reset_log_.push_back({window_.empty() ? 0 : window_.back()->features.t, cause});
   status_ = "reset: " + cause;
+  report_.state = "reset";
   initialized_ = false;
   window_.clear();
-  pending_imu_.clear();
+  features_.clear();
+  prior_.reset();
   init_buffer_.clear();
   planes_.clear();
+  used_planes_.clear();
 }
 
 std::optional<StateEstimate> SlidingWindowEstimator::addFrame(
     const FeatureFrame& frame, const std::vector<ImuSample>& imu_since_previous) {
+  const auto start = std::chrono::steady_clock::now();
+  auto elapsed_ms = [&] {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
+  };
+  report_ = FrameReport{};
   if (!initialized_) {
-    init_buffer_.push_back({frame, imu_since_previous});
+    report_.state = "initializing";
+    init_buffer_.emplace_back(frame, imu_since_previous);
     if (init_buffer_.size() > options_.init_window_frames) init_buffer_.pop_front();
     tryInitialize();
+    report_.optimization_ms = elapsed_ms();
     if (!initialized_) return std::nullopt;
+    report_.state = "tracking";
     StateEstimate s;
     s.t = frame.t;
-    std::copy(window_.back().pose, window_.back().pose + 7, s.pose);
+    std::copy(window_.back()->pose, window_.back()->pose + 7, s.pose);
     s.keyframe = true;
     return s;
   }
-  appendSamples(pending_imu_, imu_since_previous);
-  StateEstimate predicted = predict(frame.t);
-  const WindowFrame& last = window_.back();
-  const bool keyframe = averageParallax(last.features, frame, options_.init.virtual_focal) >=
-                            options_.keyframe_parallax_px ||
-                        frame.t - last.features.t >= options_.max_keyframe_gap_s;
-  if (!keyframe || pending_imu_.size() < 2) return predicted;
-
-  WindowFrame kf;
-  kf.features = frame;
-  kf.imu_from_previous = preintegrate(pending_imu_, accelBias(last), gyroBias(last));
-  std::copy(predicted.pose, predicted.pose + 7, kf.pose);
-  const Eigen::Vector3d v =
-      speed(last) + Eigen::Vector3d(0, 0, -calib_.imu.gravity) * kf.imu_from_previous->sumDt() +
-      poseRotation(last.pose) * kf.imu_from_previous->deltaV();
-  for (int i = 0; i < 3; ++i) kf.speed_bias[i] = v[i];
-  std::copy(last.speed_bias + 3, last.speed_bias + 9, kf.speed_bias + 3);
-  window_.push_back(kf);
-  pending_imu_ = {pending_imu_.back()};
-  if (window_.size() > options_.window_size) {
-    window_.pop_front();
-    window_.front().imu_from_previous = nullptr;
+  const Frame& previous = *window_.back();
+  auto f = std::make_unique<Frame>();
+  f->id = next_frame_id_++;
+  f->features = frame;
+  f->imu = imu_since_previous;
+  f->imu_from_previous = preintegrate(f->imu, previous.features.t, frame.t, previous.speed_bias);
+  if (!f->imu_from_previous) {
+    reset("no IMU between frames");
+    return std::nullopt;
   }
-  initializeMissingPlanes();
+  predict(previous, *f);
+  double predicted[7];
+  std::copy(f->pose, f->pose + 7, predicted);
+  features_.addFrame(f->id, frame);
+  window_.push_back(std::move(f));
+
+  const bool keyframe = secondNewestIsKeyframe();
+  choosePlanes();
+  features_.triangulate(cameraLookup(), options_.min_triangulation_angle_deg * M_PI / 180,
+                        kMinDepth, kMaxDepth);
+  initializePlanes();
   optimize();
-  if (!healthy()) {
-    reset("implausible state (speed or biases)");
+  rejectDepthOutliers();
+  if (report_.features >= options_.min_features) last_seen_features_t_ = frame.t;
+  const std::string why = failure(predicted);
+  if (!why.empty()) {
+    reset(why);
+    report_.optimization_ms = elapsed_ms();
     return std::nullopt;
   }
   StateEstimate s;
   s.t = frame.t;
-  std::copy(window_.back().pose, window_.back().pose + 7, s.pose);
-  s.keyframe = true;
+  std::copy(window_.back()->pose, window_.back()->pose + 7, s.pose);
+  s.keyframe = keyframe;
+  if (!keyframe)
+    dropSecondNewest();
+  else if (window_.size() > options_.window_size + 1)
+    marginalizeOldest();
+  report_.state = "tracking";
+  report_.optimization_ms = elapsed_ms();
   return s;
 }
 

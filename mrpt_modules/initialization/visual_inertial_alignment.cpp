@@ -8,6 +8,7 @@ namespace {
 
 using P = ImuPreintegration;
 const double kAccelBiasPriorWeight = 0.1;  // per m/s², against rows in m and m/s
+const double kAccelBiasRange = 0.1;        // m/s², plausible accelerometer bias left unmodelled
 
 Eigen::Matrix3d bodyRotation(const UpToScaleFrame& f, const Eigen::Isometry3d& T_BC) {
   return f.R_c0_c * T_BC.linear().transpose();  // R_c0_b = R_c0_c R_cb
@@ -29,9 +30,12 @@ Eigen::Matrix<double, 3, 2> tangentBasis(const Eigen::Vector3d& g) {
 /// bias change δba (3, observable once |g| is fixed), then the scale s.
 ///   s (c_{k+1} − c_k) − v_k T − ½ g T² − R_k J_p,ba δba = R_k Δp_k + (R_{k+1} − R_k) t_bc
 ///   v_{k+1} − v_k − g T − R_k J_v,ba δba = R_k Δv_k
+/// `scale_sigma`: uncertainty of the scale, combining the residual's variance times (AᵀA)⁻¹ and,
+/// with g fixed, how far the scale moves when the accelerometer-bias prior is moved by
+/// kAccelBiasRange along each axis (a bias the window cannot tell from a constant acceleration).
 Eigen::VectorXd solveLinear(const std::vector<UpToScaleFrame>& frames,
                             const Eigen::Isometry3d& T_BC, const Eigen::Vector3d* g_fixed,
-                            double gravity) {
+                            double gravity, double* scale_sigma = nullptr) {
   const int n = static_cast<int>(frames.size());
   const int g_dims = g_fixed ? 5 : 3;  // with g fixed: w (2) + δba (3)
   const int unknowns = 3 * n + g_dims + 1;
@@ -78,7 +82,21 @@ Eigen::VectorXd solveLinear(const std::vector<UpToScaleFrame>& frames,
   // Normal equations with the scale column rescaled for conditioning.
   const double s_weight = 100.0;
   A.col(unknowns - 1) *= s_weight;
-  Eigen::VectorXd x = A.colPivHouseholderQr().solve(b);
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
+  Eigen::VectorXd x = qr.solve(b);
+  if (scale_sigma) {
+    const double dof = std::max<double>(1, A.rows() - unknowns);
+    const double variance = (A * x - b).squaredNorm() / dof;
+    const Eigen::MatrixXd information = A.transpose() * A;
+    const Eigen::VectorXd e = Eigen::VectorXd::Unit(unknowns, unknowns - 1);
+    double sigma2 = variance * e.dot(information.ldlt().solve(e));
+    for (int axis = 0; axis < prior_rows; ++axis) {
+      Eigen::VectorXd moved = b;
+      moved(6 * (n - 1) + axis) += kAccelBiasPriorWeight * kAccelBiasRange;
+      sigma2 += std::pow(qr.solve(moved)(unknowns - 1) - x(unknowns - 1), 2);
+    }
+    *scale_sigma = s_weight * std::sqrt(sigma2);
+  }
   x(unknowns - 1) *= s_weight;
   if (g_fixed) {
     const Eigen::Vector3d g = g0 + B * x.segment<2>(3 * n);
@@ -131,7 +149,7 @@ std::optional<AlignmentResult> alignVisualInertial(std::vector<UpToScaleFrame>& 
   // Refinement on the sphere |g| = gravity (2 degrees of freedom), a few re-linearizations.
   Eigen::Vector3d g = g_free;
   for (int iteration = 0; iteration < 4; ++iteration) {
-    x = solveLinear(frames, T_BC, &g, gravity);
+    x = solveLinear(frames, T_BC, &g, gravity, &result.scale_sigma);
     g = x.segment<3>(3 * n);
   }
   result.scale = x(3 * n + 3);

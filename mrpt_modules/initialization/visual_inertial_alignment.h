@@ -23,6 +23,9 @@ struct AlignmentResult {
   Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();
   Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();  // change from the preintegrations' own
   double scale = 0;                                      // metric = scale * p_c0_c
+  // Standard deviation of the scale (residual variance times (AᵀA)⁻¹ of the final linear system):
+  // large when the window's accelerations do not make the scale observable.
+  double scale_sigma = 0;
   Eigen::Vector3d gravity_c0 = Eigen::Vector3d::Zero();
   std::vector<Eigen::Vector3d> velocity_c0;  // body velocity of each frame, c0 frame
 };

@@ -1,14 +1,19 @@
 #pragma once
 // Feeds the simulator's images through the front-end and its IMU through preintegrations:
-// WindowFrames as the estimator receives them (test helper).
+// frames as the initializer receives them (test helper).
 #include <memory>
 #include <vector>
 
-#include "mrpt_modules/estimator/estimator_types.h"
 #include "mrpt_modules/frontend/feature_tracker.h"
+#include "mrpt_modules/imu/imu_preintegration.h"
 #include "rawlog_io/sim/simulator.h"
 
 namespace rpvio::test {
+
+struct WindowFrame {
+  FeatureFrame features;
+  std::shared_ptr<ImuPreintegration> imu_from_previous;  // null for the first frame
+};
 
 class SimWindowSource {
  public:

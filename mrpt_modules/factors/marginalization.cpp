@@ -1,0 +1,189 @@
+#include "mrpt_modules/factors/marginalization.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <map>
+
+#include "mrpt_modules/core/parameter_blocks.h"
+#include "mrpt_modules/factors/pose_manifold.h"
+#include "mrpt_modules/imu/so3.h"
+
+namespace rpvio {
+namespace {
+
+using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+bool isPose(int size) { return size == kPoseSize; }
+int tangentSize(int size) { return isPose(size) ? kPoseLocalSize : size; }
+
+/// Inverse right Jacobian of SO(3): Log(Exp(w) Exp(δ)) ≈ w + J_r⁻¹(w) δ.
+Eigen::Matrix3d inverseRightJacobian(const Eigen::Vector3d& w) {
+  const double a = w.norm();
+  const Eigen::Matrix3d W = hat(w);
+  if (a < 1e-6) return Eigen::Matrix3d::Identity() + 0.5 * W + W * W / 12.0;
+  return Eigen::Matrix3d::Identity() + 0.5 * W +
+         (1 / (a * a) - (1 + std::cos(a)) / (2 * a * std::sin(a))) * W * W;
+}
+
+/// Tangent Jacobian → Jacobian w.r.t. the 7 ambient numbers of a pose (pose_manifold.h).
+Eigen::MatrixXd tangentToAmbientDynamic(const Eigen::MatrixXd& J_tangent, const double* pose) {
+  Eigen::Matrix<double, 6, 6> inv = Eigen::Matrix<double, 6, 6>::Identity();
+  inv.bottomRightCorner<3, 3>() *= 4.0;  // (PᵀP)⁻¹, P = PlusJacobian
+  return J_tangent * inv * posePlusJacobian(pose).transpose();
+}
+
+}  // namespace
+
+bool MarginalizationPrior::involves(const double* block) const {
+  return std::find(blocks.begin(), blocks.end(), block) != blocks.end();
+}
+
+MarginalizationFactor::MarginalizationFactor(std::shared_ptr<const MarginalizationPrior> prior)
+    : prior_(std::move(prior)) {
+  int offset = 0;
+  for (int size : prior_->sizes) {
+    mutable_parameter_block_sizes()->push_back(size);
+    offsets_.push_back(offset);
+    offset += tangentSize(size);
+  }
+  set_num_residuals(static_cast<int>(prior_->r0.size()));
+}
+
+bool MarginalizationFactor::Evaluate(double const* const* x, double* residuals,
+                                     double** jacobians) const {
+  const Eigen::MatrixXd& J = prior_->J;
+  Eigen::VectorXd dx(J.cols());
+  const auto& sizes = parameter_block_sizes();
+  for (size_t b = 0; b < sizes.size(); ++b) {
+    const double* x0 = prior_->x0[b].data();
+    if (isPose(sizes[b])) {
+      dx.segment<3>(offsets_[b]) = posePosition(x[b]) - posePosition(x0);
+      const Eigen::AngleAxisd d(poseRotation(x0).conjugate() * poseRotation(x[b]));
+      dx.segment<3>(offsets_[b] + 3) = d.angle() * d.axis();
+    } else {
+      for (int i = 0; i < sizes[b]; ++i) dx(offsets_[b] + i) = x[b][i] - x0[i];
+    }
+  }
+  Eigen::Map<Eigen::VectorXd>(residuals, num_residuals()) = prior_->r0 + J * dx;
+  if (!jacobians) return true;
+  for (size_t b = 0; b < sizes.size(); ++b) {
+    if (!jacobians[b]) continue;
+    Eigen::Map<RowMajorMatrix> out(jacobians[b], num_residuals(), sizes[b]);
+    const int tan = tangentSize(sizes[b]);
+    if (!isPose(sizes[b])) {
+      out = J.middleCols(offsets_[b], tan);
+      continue;
+    }
+    // d(x ⊞ δ ⊟ x0)/dδ = diag(I, J_r⁻¹(Log(q0⁻¹ q))).
+    Eigen::MatrixXd J_tangent = J.middleCols(offsets_[b], tan);
+    J_tangent.rightCols<3>() *= inverseRightJacobian(dx.segment<3>(offsets_[b] + 3));
+    out = tangentToAmbientDynamic(J_tangent, x[b]);
+  }
+  return true;
+}
+
+void Marginalizer::addFactor(std::unique_ptr<ceres::CostFunction> cost,
+                             std::shared_ptr<ceres::LossFunction> loss,
+                             std::vector<double*> blocks) {
+  factors_.push_back({std::move(cost), std::move(loss), std::move(blocks)});
+}
+
+std::shared_ptr<const MarginalizationPrior> Marginalizer::marginalize(
+    const std::set<const double*>& remove) const {
+  // Tangent layout: removed blocks first, then kept ones, each in order of first appearance
+  // (never by address, so that runs are reproducible).
+  std::vector<const Factor*> used;
+  std::vector<double*> removed, kept;
+  std::map<const double*, int> size_of;
+  for (const auto& f : factors_) {
+    if (std::none_of(f.blocks.begin(), f.blocks.end(),
+                     [&](const double* b) { return remove.count(b) > 0; }))
+      continue;
+    used.push_back(&f);
+    for (size_t k = 0; k < f.blocks.size(); ++k) {
+      double* b = f.blocks[k];
+      if (size_of.count(b) || constant_.count(b)) continue;
+      size_of[b] = f.cost->parameter_block_sizes()[k];
+      (remove.count(b) ? removed : kept).push_back(b);
+    }
+  }
+  if (kept.empty()) return nullptr;
+  std::map<const double*, int> offset;
+  int m = 0, n = 0;
+  for (double* b : removed) offset[b] = m, m += tangentSize(size_of[b]);
+  n = m;
+  for (double* b : kept) offset[b] = n, n += tangentSize(size_of[b]);
+
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(n, n);
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(n);
+  for (const Factor* f : used) {
+    const int rows = f->cost->num_residuals();
+    const auto& sizes = f->cost->parameter_block_sizes();
+    Eigen::VectorXd r(rows);
+    std::vector<RowMajorMatrix> J_ambient;
+    std::vector<double*> J_ptrs;
+    for (int s : sizes) J_ambient.emplace_back(rows, s);
+    for (auto& J : J_ambient) J_ptrs.push_back(J.data());
+    if (!f->cost->Evaluate(f->blocks.data(), r.data(), J_ptrs.data())) continue;
+    std::vector<Eigen::MatrixXd> J(sizes.size());
+    for (size_t k = 0; k < sizes.size(); ++k)
+      J[k] = isPose(sizes[k]) ? Eigen::MatrixXd(J_ambient[k] * posePlusJacobian(f->blocks[k]))
+                              : Eigen::MatrixXd(J_ambient[k]);
+    if (f->loss) {
+      // Ceres' robust corrector (Triggs et al.): the loss folded into residual and Jacobian.
+      const double sq = r.squaredNorm();
+      double rho[3];
+      f->loss->Evaluate(sq, rho);
+      const double sqrt_rho1 = std::sqrt(rho[1]);
+      double residual_scaling = sqrt_rho1, alpha_sq = 0;
+      if (sq > 0 && rho[2] > 0) {
+        const double alpha = 1 - std::sqrt(1 + 2 * sq * rho[2] / rho[1]);
+        residual_scaling = sqrt_rho1 / (1 - alpha);
+        alpha_sq = alpha / sq;
+      }
+      for (auto& Jk : J) Jk = sqrt_rho1 * (Jk - alpha_sq * r * (r.transpose() * Jk));
+      r *= residual_scaling;
+    }
+    for (size_t a = 0; a < sizes.size(); ++a) {
+      if (constant_.count(f->blocks[a])) continue;
+      const int oa = offset[f->blocks[a]];
+      g.segment(oa, J[a].cols()) += J[a].transpose() * r;
+      for (size_t b = 0; b < sizes.size(); ++b)
+        if (!constant_.count(f->blocks[b]))
+          H.block(oa, offset[f->blocks[b]], J[a].cols(), J[b].cols()) += J[a].transpose() * J[b];
+    }
+  }
+
+  // Schur complement: H* = Hkk − Hkm Hmm⁻¹ Hmk, g* = gk − Hkm Hmm⁻¹ gm (Hmm⁻¹ pseudo-inverse).
+  const double eps = 1e-8;
+  const Eigen::MatrixXd Hmm = 0.5 * (H.topLeftCorner(m, m) + H.topLeftCorner(m, m).transpose());
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig_m(Hmm);
+  const Eigen::VectorXd inv_values =
+      (eig_m.eigenvalues().array() > eps).select(eig_m.eigenvalues().array().inverse(), 0);
+  const Eigen::MatrixXd Hmm_inv =
+      eig_m.eigenvectors() * inv_values.asDiagonal() * eig_m.eigenvectors().transpose();
+  const int k = n - m;
+  const Eigen::MatrixXd Hkm = H.block(m, 0, k, m);
+  const Eigen::MatrixXd H_prior = H.bottomRightCorner(k, k) - Hkm * Hmm_inv * Hkm.transpose();
+  const Eigen::VectorXd g_prior = g.tail(k) - Hkm * Hmm_inv * g.head(m);
+
+  // H* = Jᵀ J and g* = Jᵀ r0: J = S^½ Vᵀ, r0 = S^-½ Vᵀ g* over the well-determined directions.
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(0.5 * (H_prior + H_prior.transpose()));
+  const Eigen::ArrayXd s = eig.eigenvalues().array();
+  const Eigen::VectorXd sqrt_s = (s > eps).select(s.sqrt(), 0);
+  const Eigen::VectorXd inv_sqrt_s = (s > eps).select(s.sqrt().inverse(), 0);
+  Eigen::MatrixXd J = sqrt_s.asDiagonal() * eig.eigenvectors().transpose();
+  Eigen::VectorXd r0 = inv_sqrt_s.asDiagonal() * eig.eigenvectors().transpose() * g_prior;
+
+  auto prior = std::make_shared<MarginalizationPrior>();
+  prior->blocks = kept;
+  for (double* b : kept) {
+    prior->sizes.push_back(size_of[b]);
+    prior->x0.emplace_back(b, b + size_of[b]);
+  }
+  prior->J = std::move(J);
+  prior->r0 = std::move(r0);
+  return prior;
+}
+
+}  // namespace rpvio
