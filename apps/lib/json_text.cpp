@@ -1,5 +1,8 @@
 #include "apps/lib/json_text.h"
 
+#include <cstdlib>
+#include <limits>
+
 namespace rpvio {
 
 std::string jsonString(const std::string& s) {
@@ -9,6 +12,13 @@ std::string jsonString(const std::string& s) {
     out += c;
   }
   return out + "\"";
+}
+
+double jsonNumber(const std::string& json, const std::string& key) {
+  const std::string quoted = "\"" + key + "\":";
+  const auto at = json.find(quoted);
+  if (at == std::string::npos) return std::numeric_limits<double>::quiet_NaN();
+  return std::strtod(json.c_str() + at + quoted.size(), nullptr);
 }
 
 }  // namespace rpvio

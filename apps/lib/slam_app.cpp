@@ -148,6 +148,7 @@ int slamMain(int argc, char** argv) {
       s << "],\n  \"total_ms_median\": " << percentile(total_ms, 0.5)
         << ",\n  \"total_ms_p95\": " << percentile(total_ms, 0.95)
         << ",\n  \"frontend_ms_median\": " << percentile(frontend_ms, 0.5)
+        << ",\n  \"frontend_ms_p95\": " << percentile(frontend_ms, 0.95)
         << ",\n  \"optimization_ms_median\": " << percentile(optimization_ms, 0.5)
         << ",\n  \"optimization_ms_p95\": " << percentile(optimization_ms, 0.95)
         << ",\n  \"wall_s\": " << wall << ",\n  \"sequence_s\": " << sequence_s
