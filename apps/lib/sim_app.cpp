@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <set>
 
 #include "apps/lib/command_line.h"
 #include "rawlog_io/sim/sequence_writer.h"
@@ -22,7 +23,55 @@ const char* kUsage =
     "  Writes DIR/seq.rawlog (+ seq_Images/), DIR/groundtruth.tum, DIR/groundtruth_biases.csv,\n"
     "  DIR/calib.ini. --suite writes DIR/{static,C1,C2,C4,C6,C8}/ with the same seed. Scene and\n"
     "  noise parameters: --config (default config/sim/warehouse.ini when present, else built-in\n"
-    "  defaults, which that file documents).\n";
+    "  defaults, which that file documents).\n"
+    "  Fault injection (off by default; times in s of the sequence, intervals START:DURATION,\n"
+    "  each option may repeat):\n"
+    "    --drop-frame T        the frame nearest to T is lost\n"
+    "    --drop-frames I       every frame in the interval is lost\n"
+    "    --imu-gap I           no IMU sample in the interval\n"
+    "    --blackout I          black images, masks all 0\n"
+    "    --blur I [--blur-px PX]  horizontal motion blur over PX pixels (default 15)\n"
+    "    --no-planes I         masks all 0 (no static plane recognized), images unchanged\n"
+    "    --accel-saturation A, --gyro-saturation G   IMU components clipped to +-A m/s2, +-G "
+    "rad/s\n"
+    "    --time-offset 0.03    (above) a camera-IMU offset the estimator does not know about\n";
+
+const std::set<std::string> kFaultOptions = {
+    "drop-frame", "drop-frames", "imu-gap",          "blackout",       "blur",
+    "blur-px",    "no-planes",   "accel-saturation", "gyro-saturation"};
+
+sim::FaultInjection faultOptions(const CommandLine& cli) {
+  sim::FaultInjection f;
+  auto intervals = [&](const char* name, std::vector<sim::TimeInterval>& out) {
+    if (!cli.has(name)) return;
+    for (const std::string& v : cli.values(name)) {
+      try {
+        out.push_back(sim::parseTimeInterval(v, std::string("--") + name));
+      } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+      }
+    }
+  };
+  if (cli.has("drop-frame"))
+    for (const std::string& v : cli.values("drop-frame")) {
+      char* end = nullptr;
+      const double t = std::strtod(v.c_str(), &end);
+      if (end == v.c_str() || *end != '\0' || !(t >= 0))
+        throw UsageError("--drop-frame expects a time in seconds, got '" + v + "'");
+      f.dropped_frames.push_back(t);
+    }
+  intervals("drop-frames", f.dropped_bursts);
+  intervals("imu-gap", f.imu_gaps);
+  intervals("blackout", f.blackouts);
+  intervals("blur", f.motion_blur);
+  intervals("no-planes", f.no_planes);
+  f.blur_px = cli.number("blur-px", f.blur_px);
+  f.accel_saturation = cli.number("accel-saturation", 0);
+  f.gyro_saturation = cli.number("gyro-saturation", 0);
+  if (f.blur_px < 1 || f.accel_saturation < 0 || f.gyro_saturation < 0)
+    throw UsageError("--blur-px must be >= 1 and saturations >= 0");
+  return f;
+}
 
 sim::SimConfig loadConfig(const CommandLine& cli) {
   const std::string path = cli.valueOr("config", "");
@@ -34,6 +83,7 @@ sim::SimConfig loadConfig(const CommandLine& cli) {
   config.duration = cli.number("duration", config.duration);
   config.time_offset = cli.number("time-offset", config.time_offset);
   config.scene.characters = static_cast<int>(cli.number("characters", config.scene.characters));
+  config.faults = faultOptions(cli);
   if (config.duration <= 0) throw UsageError("--duration must be positive");
   if (config.scene.characters < 0 || config.scene.characters > 50)
     throw UsageError("--characters must be between 0 and 50");
@@ -64,9 +114,10 @@ void generate(const sim::SimConfig& config, const std::string& dir) {
 
 int simMain(int argc, char** argv) {
   return runApp("rpvio-sim", kUsage, [&] {
-    const CommandLine cli(
-        argc, argv, {"characters", "seed", "duration", "time-offset", "config", "out", "time"},
-        {"suite", "preview"});
+    std::set<std::string> options = {"characters", "seed", "duration", "time-offset",
+                                     "config",     "out",  "time"};
+    options.insert(kFaultOptions.begin(), kFaultOptions.end());
+    const CommandLine cli(argc, argv, options, {"suite", "preview"});
     const std::string out = cli.value("out");
     if (cli.has("preview")) {
       sim::SimConfig config = loadConfig(cli);

@@ -66,12 +66,14 @@ SequenceStats writeSequence(const SimConfig& config, const std::string& out_dir,
     const bool has_frame = k < frame_times.size();
     const double stamp = has_frame ? frame_times[k] - config.time_offset : INFINITY;
     for (; i_imu < imu.size() && imu[i_imu].t <= stamp; ++i_imu) {
-      writer.addImu(imu[i_imu]);
+      if (!config.faults.dropsImu(imu[i_imu].t)) writer.addImu(config.faults.saturate(imu[i_imu]));
       groundtruth.push_back(stampedPose(sim, imu[i_imu].t));
       writer.addGroundTruth(groundtruth.back());
     }
     if (!has_frame || stamp < 0) continue;
-    const RenderedFrame frame = sim.render(frame_times[k], static_cast<int>(k));
+    if (config.faults.dropsFrame(frame_times[k], 1.0 / config.camera_rate)) continue;
+    RenderedFrame frame = sim.render(frame_times[k], static_cast<int>(k));
+    config.faults.applyToFrame(frame_times[k], frame.image, frame.mask);
     writer.addImage(stamp, frame.image);
     writer.addMask(stamp, frame.mask);
     character_fraction_sum +=

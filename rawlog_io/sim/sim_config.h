@@ -4,6 +4,7 @@
 #include <string>
 
 #include "rawlog_io/calibration.h"
+#include "rawlog_io/sim/fault_injection.h"
 #include "rawlog_io/sim/flight_trajectory.h"
 #include "rawlog_io/sim/imu_simulator.h"
 #include "rawlog_io/sim/mask_degradation.h"
@@ -26,6 +27,7 @@ struct SimConfig {
   bool imu_noise = true;
   ImuBiasState initial_bias = defaultInitialBias();
   MaskDegradation mask;
+  FaultInjection faults;  // off by default; set by rpvio-sim's fault options
 
   /// Camera looking along body x, 10 cm ahead and 5 cm above the IMU (camera z = body x, camera
   /// x = −body y, camera y = −body z).
