@@ -11,6 +11,7 @@ CommandLine::CommandLine(int argc, char** argv, const std::set<std::string>& opt
                          const std::set<std::string>& flags) {
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
+    if (arg == "--help" || arg == "-h") throw HelpRequested{};
     if (arg.rfind("--", 0) != 0) {
       positional_.push_back(arg);
       continue;
@@ -56,6 +57,9 @@ const std::vector<std::string>& CommandLine::values(const std::string& name) con
 int runApp(const std::string& app, const std::string& usage, const std::function<int()>& body) {
   try {
     return body();
+  } catch (const HelpRequested&) {
+    std::cout << usage;
+    return 0;
   } catch (const UsageError& e) {
     std::cerr << app << ": error: " << e.what() << "\n" << usage;
     return kExitBadInput;

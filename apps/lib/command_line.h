@@ -14,6 +14,9 @@ struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// Thrown for --help / -h: runApp prints the usage on stdout and exits 0.
+struct HelpRequested {};
+
 class CommandLine {
  public:
   /// `options` take a value (may repeat), `flags` do not; positional arguments are kept in order.

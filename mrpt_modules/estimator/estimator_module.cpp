@@ -52,14 +52,22 @@ void SlidingWindowEstimatorModule::initialize(const IniFile& ini, const std::str
   o.min_features = count("min_features", o.min_features);
   o.max_blind_s = ini.numberOr(s, "max_blind_s", o.max_blind_s);
   o.virtual_focal = ini.numberOr(s, "virtual_focal", o.virtual_focal);
-  const std::string initializer = ini.textOr(s, "initializer", "homography");
-  if (initializer == "homography")
-    o.init.method = InitializerMethod::kPlanarHomography;
-  else if (initializer == "essential")
-    o.init.method = InitializerMethod::kEssentialMatrix;
-  else
-    throw InputError(ini.path(), "line " + std::to_string(ini.line(s, "initializer")),
-                     "initializer must be homography or essential, not '" + initializer + "'");
+  auto method = [&](const char* key, const char* fallback) {
+    const std::string name = ini.textOr(s, key, fallback);
+    if (name == "homography") return InitializerMethod::kPlanarHomography;
+    if (name == "essential") return InitializerMethod::kEssentialMatrix;
+    throw InputError(ini.path(), "line " + std::to_string(ini.line(s, key)),
+                     std::string(key) + " must be homography or essential, not '" + name + "'");
+  };
+  o.init.method = method("initializer", "homography");
+  o.reinit_method = method("reinitializer", "essential");
+  o.init_fallback = ini.flagOr(s, "init_fallback", o.init_fallback);
+  o.init_fallback_after_s = ini.numberOr(s, "init_fallback_after_s", o.init_fallback_after_s);
+  o.reinit_max_relative_scale_sigma =
+      ini.numberOr(s, "reinit_max_scale_sigma", o.reinit_max_relative_scale_sigma);
+  o.max_reconnect_s = ini.numberOr(s, "max_reconnect_s", o.max_reconnect_s);
+  o.init_retry_frames = static_cast<size_t>(
+      ini.numberOr(s, "init_retry_frames", static_cast<double>(o.init_retry_frames)));
   o.init.min_window_s = ini.numberOr(s, "init_window_s", o.init.min_window_s);
   o.init.min_parallax_px = ini.numberOr(s, "init_parallax_px", o.init.min_parallax_px);
   o.init.virtual_focal = o.virtual_focal;

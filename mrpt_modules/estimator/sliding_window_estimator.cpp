@@ -45,8 +45,23 @@ SlidingWindowEstimator::SlidingWindowEstimator(const Calibration& calibration,
     : calib_(calibration),
       options_(options),
       initializer_(calibration, options.init),
+      fallback_initializer_(calibration,
+                            [&] {
+                              InitializerOptions o = options.init;
+                              o.method = InitializerMethod::kEssentialMatrix;
+                              return o;
+                            }()),
+      reinitializer_(calibration,
+                     [&] {
+                       InitializerOptions o = options.init;
+                       o.max_relative_scale_sigma = options.reinit_max_relative_scale_sigma;
+                       o.method = options.reinit_method;
+                       return o;
+                     }()),
       planes_map_(options.planes_map) {
   initializer_.setMinLoggingLevel(mrpt::system::LVL_WARN);  // the estimator reports the status
+  reinitializer_.setMinLoggingLevel(mrpt::system::LVL_WARN);
+  fallback_initializer_.setMinLoggingLevel(mrpt::system::LVL_WARN);
   window_imu_noise_ = calib_.imu;
   for (double* density :
        {&window_imu_noise_.accel_noise_density, &window_imu_noise_.gyro_noise_density,
@@ -70,9 +85,17 @@ std::shared_ptr<ImuPreintegration> SlidingWindowEstimator::preintegrate(
     first.accel = (1 - a) * first.accel + a * samples[1].accel;
     first.gyro = (1 - a) * first.gyro + a * samples[1].gyro;
   }
+  // An IMU gap (samples missing, the last one held over it): the held value is a guess, so the
+  // factor's noise is inflated and the cameras carry the motion.
+  double longest_step = t1 - samples.back().t;
+  for (size_t k = 1; k < samples.size(); ++k)
+    longest_step = std::max(longest_step, samples[k].t - std::max(t0, samples[k - 1].t));
+  ImuNoise n = noise ? *noise : window_imu_noise_;
+  if (longest_step > options_.max_imu_step_s)
+    for (double* density : {&n.accel_noise_density, &n.gyro_noise_density})
+      *density *= options_.imu_gap_noise_inflation;
   auto pre = std::make_shared<ImuPreintegration>(
-      first.accel, first.gyro, Eigen::Vector3d(speed_bias + 3), Eigen::Vector3d(speed_bias + 6),
-      noise ? *noise : window_imu_noise_);
+      first.accel, first.gyro, Eigen::Vector3d(speed_bias + 3), Eigen::Vector3d(speed_bias + 6), n);
   double t = t0;
   for (size_t k = 1; k < samples.size(); ++k) {
     if (samples[k].t <= t) continue;
@@ -343,17 +366,34 @@ void SlidingWindowEstimator::flushPlanes() {
 void SlidingWindowEstimator::tryInitialize() {
   std::vector<FeatureFrame> frames;
   std::vector<std::shared_ptr<ImuPreintegration>> imu;
+  // Preintegrations linearized at the last good biases after a reset, at zero before the first
+  // initialization.
   const double zero[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+  const double* biases = last_good_ ? last_good_->speed_bias : zero;
   for (size_t k = 0; k < init_buffer_.size(); ++k) {
     frames.push_back(init_buffer_[k].first);
     imu.push_back(k == 0 ? nullptr
                          : preintegrate(init_buffer_[k].second, init_buffer_[k - 1].first.t,
-                                        frames.back().t, zero, &calib_.imu));
+                                        frames.back().t, biases, &calib_.imu));
     if (k > 0 && !imu.back()) return;  // a frame without IMU: wait for a clean window
   }
-  const InitializationResult init = initializer_.tryInitialize(frames, imu);
+  InitializationResult init =
+      (last_good_ ? reinitializer_ : initializer_).tryInitialize(frames, imu);
+  if (!last_good_ && init.status == InitStatus::kGeometryFailed && options_.init_fallback &&
+      options_.init.method != InitializerMethod::kEssentialMatrix) {
+    if (first_geometry_failure_t_ < 0) first_geometry_failure_t_ = frames.back().t;
+    if (frames.back().t - first_geometry_failure_t_ >= options_.init_fallback_after_s)
+      init = fallback_initializer_.tryInitialize(frames, imu);
+  }
   status_ = init.ok() ? "tracking" : toString(init.status);
-  if (!init.ok()) return;
+  if (!init.ok()) {
+    // A failure after the bundle adjustment costs a second or so: not again on the next frame.
+    if (init.status == InitStatus::kGeometryFailed ||
+        init.status == InitStatus::kTooLittleImuExcitation ||
+        init.status == InitStatus::kAlignmentRejected)
+      init_skip_frames_ = options_.init_retry_frames;
+    return;
+  }
   // Keyframes: evenly spaced over the initialization window, ending at its newest frame.
   const size_t n = frames.size();
   const size_t step =
@@ -413,6 +453,7 @@ void SlidingWindowEstimator::tryInitialize() {
     e.distance[0] = plane.d;
     planes_[mask] = e;
   }
+  if (last_good_) reconnect();
   init_buffer_.clear();
   initialized_ = true;
   last_seen_features_t_ = window_.back()->features.t;
@@ -421,6 +462,42 @@ void SlidingWindowEstimator::tryInitialize() {
                         kMinDepth, kMaxDepth);
   optimize();
   rejectDepthOutliers();
+}
+
+void SlidingWindowEstimator::reconnect() {
+  Frame from, to;
+  from.features.t = last_good_->t;
+  std::copy(last_good_->pose, last_good_->pose + 7, from.pose);
+  std::copy(last_good_->speed_bias, last_good_->speed_bias + 9, from.speed_bias);
+  Frame& first = *window_.front();
+  std::vector<ImuSample> samples;  // up to the first keyframe
+  for (const ImuSample& sample : imu_since_good_)
+    if (sample.t <= first.features.t) samples.push_back(sample);
+  to.imu_from_previous =
+      preintegrate(samples, last_good_->t, first.features.t, last_good_->speed_bias, &calib_.imu);
+  last_good_.reset();
+  imu_since_good_.clear();
+  if (!to.imu_from_previous) return;
+  predict(from, to);
+  // Both worlds have z up: they differ by a yaw and a translation.
+  const Eigen::Matrix3d M = poseRotation(to.pose).toRotationMatrix() *
+                            poseRotation(first.pose).toRotationMatrix().transpose();
+  const Eigen::Quaterniond yaw(
+      Eigen::AngleAxisd(std::atan2(M(1, 0), M(0, 0)), Eigen::Vector3d::UnitZ()));
+  const Eigen::Vector3d shift = posePosition(to.pose) - yaw * posePosition(first.pose);
+  for (auto& f : window_) {
+    const Eigen::Vector3d p = yaw * posePosition(f->pose) + shift;
+    const Eigen::Quaterniond q = (yaw * poseRotation(f->pose)).normalized();
+    const Eigen::Vector3d v = yaw * Eigen::Vector3d(f->speed_bias);
+    const double pose[7] = {p.x(), p.y(), p.z(), q.x(), q.y(), q.z(), q.w()};
+    std::copy(pose, pose + 7, f->pose);
+    std::copy(v.data(), v.data() + 3, f->speed_bias);
+  }
+  for (auto& [mask, e] : planes_) {
+    const Eigen::Vector3d n = yaw * Eigen::Vector3d(e.normal);
+    std::copy(n.data(), n.data() + 3, e.normal);
+    e.distance[0] += n.dot(shift);
+  }
 }
 
 void SlidingWindowEstimator::reset(const std::string& cause) {
@@ -434,6 +511,8 @@ void SlidingWindowEstimator::reset(const std::string& cause) {
   init_buffer_.clear();
   planes_.clear();
   used_planes_.clear();
+  init_skip_frames_ = 0;
+  first_geometry_failure_t_ = -1;
 }
 
 std::optional<StateEstimate> SlidingWindowEstimator::addFrame(
@@ -446,9 +525,20 @@ std::optional<StateEstimate> SlidingWindowEstimator::addFrame(
   report_ = FrameReport{};
   if (!initialized_) {
     report_.state = "initializing";
+    if (last_good_) {
+      appendSamples(imu_since_good_, imu_since_previous);
+      if (frame.t - last_good_->t > options_.max_reconnect_s) {
+        last_good_.reset();  // too long: the next initialization starts a new world
+        imu_since_good_.clear();
+      }
+    }
+    if (frame.features.empty()) init_buffer_.clear();  // no structure can span a blank frame
     init_buffer_.emplace_back(frame, imu_since_previous);
     if (init_buffer_.size() > options_.init_window_frames) init_buffer_.pop_front();
-    tryInitialize();
+    if (init_skip_frames_ > 0)
+      --init_skip_frames_;
+    else
+      tryInitialize();
     report_.optimization_ms = elapsed_ms();
     if (!initialized_) return std::nullopt;
     report_.state = "tracking";
@@ -466,6 +556,7 @@ std::optional<StateEstimate> SlidingWindowEstimator::addFrame(
   f->imu_from_previous = preintegrate(f->imu, previous.features.t, frame.t, previous.speed_bias);
   if (!f->imu_from_previous) {
     reset("no IMU between frames");
+    imu_since_good_ = imu_since_previous;
     return std::nullopt;
   }
   predict(previous, *f);
@@ -485,6 +576,7 @@ std::optional<StateEstimate> SlidingWindowEstimator::addFrame(
   const std::string why = failure(predicted);
   if (!why.empty()) {
     reset(why);
+    imu_since_good_ = imu_since_previous;  // from the last good state (the previous frame) on
     report_.optimization_ms = elapsed_ms();
     return std::nullopt;
   }
@@ -492,6 +584,9 @@ std::optional<StateEstimate> SlidingWindowEstimator::addFrame(
   s.t = frame.t;
   std::copy(window_.back()->pose, window_.back()->pose + 7, s.pose);
   s.keyframe = keyframe;
+  last_good_ = GoodState{frame.t, {}, {}};
+  std::copy(window_.back()->pose, window_.back()->pose + 7, last_good_->pose);
+  std::copy(window_.back()->speed_bias, window_.back()->speed_bias + 9, last_good_->speed_bias);
   if (!keyframe)
     dropSecondNewest();
   else if (window_.size() > options_.window_size + 1)

@@ -46,6 +46,10 @@ struct EstimatorOptions {
   // factor (VINS-Mono's configs inflate them likewise). Measured on exact simulated features with
   // the simulator's IMU noise (tests/estimator): ATE over 20 s 0.15 m at 1, 0.03 m at 10.
   double imu_noise_inflation = 10;
+  // IMU gaps: a step between samples longer than this (s) makes the interval's IMU factor this
+  // many times noisier (white-noise densities).
+  double max_imu_step_s = 0.05;
+  double imu_gap_noise_inflation = 30;
   int max_iterations = 8;
   double max_solver_time_s = 0;  // 0: no time budget (a budget makes runs machine-dependent)
   double min_triangulation_angle_deg = 1.0;
@@ -54,10 +58,25 @@ struct EstimatorOptions {
   double max_gyro_bias = 1.0;   // rad/s
   double max_jump_m = 5.0;      // optimized newest pose vs its IMU prediction
   double max_jump_deg = 50.0;
-  size_t min_features = 4;         // features in use in the newest frame ...
-  double max_blind_s = 1.0;        // ... not reached for this long
-  double virtual_focal = 460;      // px; parallax thresholds and factor weights refer to it
+  size_t min_features = 4;     // features in use in the newest frame ...
+  double max_blind_s = 1.0;    // ... not reached for this long
+  double virtual_focal = 460;  // px; parallax thresholds and factor weights refer to it
+  // Re-initialization after a reset: mid-flight accelerations make the scale less observable
+  // than the take-off, so the alignment's scale may be this uncertain (the window refines it) ...
+  double reinit_max_relative_scale_sigma = 0.10;
+  // ... by this method: the homography initializer's structure fails mid-flight on the simulator
+  // (bundle adjustment diverges), the essential-matrix one (on the same, masked features) works.
+  InitializerMethod reinit_method = InitializerMethod::kEssentialMatrix;
+  // When the homography initializer's two-view geometry or structure fails (its bundle adjustment
+  // diverges on some windows, e.g. with an unknown 30 ms camera-IMU offset), the same window is
+  // tried with the essential-matrix method, same thresholds.
+  bool init_fallback = true;
+  double init_fallback_after_s = 1.0;  // ... once it has failed for this long
+  // ... and the new window is placed in the old world by dead reckoning from the last good state
+  // when the reset was at most this long ago (else the trajectory continues in a new world).
+  double max_reconnect_s = 20;
   size_t init_window_frames = 41;  // frames kept while initializing (2 s at 20 Hz)
+  size_t init_retry_frames = 0;    // frames skipped after a costly failed initialization attempt
   InitializerOptions init;
   PlanesMapOptions planes_map;
 };
@@ -112,6 +131,9 @@ class SlidingWindowEstimator {
   };
 
   void tryInitialize();
+  /// Moves a re-initialized window (and its planes) into the world of the last good state by the
+  /// yaw and translation that put its first keyframe on the IMU's dead reckoning.
+  void reconnect();
   /// From t0 to t1, linearized at the biases of `speed_bias`; noise: the window's by default.
   std::shared_ptr<ImuPreintegration> preintegrate(const std::vector<ImuSample>& samples, double t0,
                                                   double t1, const double* speed_bias,
@@ -134,7 +156,9 @@ class SlidingWindowEstimator {
   EstimatorOptions options_;
   ImuNoise window_imu_noise_;  // calib_.imu inflated for the window's factors
   Initializer initializer_;
-  double mount_[7];  // T_BC as a (constant) pose block
+  Initializer fallback_initializer_;  // when the configured method's geometry fails
+  Initializer reinitializer_;         // after a reset
+  double mount_[7];                   // T_BC as a (constant) pose block
   bool initialized_ = false;
   std::string status_ = "collecting frames";
   std::vector<ResetEvent> reset_log_;
@@ -148,6 +172,15 @@ class SlidingWindowEstimator {
   std::set<int> used_planes_;  // mask ids whose features (and homographies) are in use
   PlanesMap planes_map_;
   double last_seen_features_t_ = 0;
+  double first_geometry_failure_t_ = -1;  // of the configured initializer (for the fallback)
+  size_t init_skip_frames_ = 0;           // initialization attempts left out before the next one
+  struct GoodState {
+    double t = 0;
+    double pose[7];
+    double speed_bias[9];
+  };
+  std::optional<GoodState> last_good_;     // newest state reported; kept through a reset
+  std::vector<ImuSample> imu_since_good_;  // from last_good_ on, while re-initializing
 };
 
 }  // namespace rpvio

@@ -62,6 +62,8 @@ TEST(BenchApp, BadArgumentsExitTwo) {
   EXPECT_EQ(test::runCommand(bench + "--suite x --modes nonsense", output), 2);
   EXPECT_NE(output.find("nonsense.ini"), std::string::npos) << output;
   EXPECT_EQ(test::runCommand(bench + "--suite x --runs 0", output), 2);
+  EXPECT_EQ(test::runCommand(test::binDir() + "/rpvio-bench --help", output), 0);
+  EXPECT_EQ(output.rfind("usage: rpvio-bench", 0), 0u) << output;
 }
 
 }  // namespace
