@@ -95,6 +95,20 @@ TEST(BadInput, CalibrationMalformedValue) {
                    "line 5");
 }
 
+TEST(BadInput, CalibrationImageSizeNotAnInt) {
+  // Found by tests/fuzz/calibration_fuzz.cpp: 8e9 was cast to int (undefined behaviour).
+  test::TempDir dir;
+  tinyCalibration().save(dir.file("calib.ini"));
+  const std::string text = test::readFile(dir.file("calib.ini"));
+  for (const std::string width : {"8000000001", "0", "7.5"}) {
+    std::string bad = text;
+    bad.replace(bad.find("width = 8"), 9, "width = " + width);
+    test::writeText(dir.file("calib.ini"), bad);
+    expectInputError([&] { Calibration::load(dir.file("calib.ini")); }, dir.file("calib.ini"),
+                     "line 3: 'width' must be a positive whole number of pixels");
+  }
+}
+
 TEST(BadInput, MalformedCsvLine) {
   test::TempDir dir;
   test::writeText(dir.file("gt.csv"),
