@@ -73,6 +73,15 @@ std::string writeImuRawlog(const test::TempDir& dir, const std::vector<double>& 
   return path;
 }
 
+/// The uncompressed bytes of a gz rawlog.
+std::string decompress(const std::string& path) {
+  std::string plain;
+  mrpt::io::CFileGZInputStream in(path);
+  char buf[4096];
+  while (size_t n = in.Read(buf, sizeof(buf))) plain.append(buf, n);
+  return plain;
+}
+
 TEST(BadInput, MissingRawlog) {
   expectInputError([] { RawlogReader("/nonexistent/seq.rawlog"); }, "/nonexistent/seq.rawlog",
                    "not found");
@@ -132,12 +141,7 @@ TEST(BadInput, TruncatedRawlog) {
   test::TempDir dir;
   const std::string full = writeImuRawlog(dir, {1.0, 2.0, 3.0, 4.0});
   // Decompress-level truncation: keep a prefix of the uncompressed stream, recompressed.
-  std::string plain;
-  {
-    mrpt::io::CFileGZInputStream in(full);
-    char buf[4096];
-    while (size_t n = in.Read(buf, sizeof(buf))) plain.append(buf, n);
-  }
+  const std::string plain = decompress(full);
   const std::string cut = dir.file("cut.rawlog");
   {
     mrpt::io::CFileGZOutputStream out(cut);
@@ -150,6 +154,23 @@ TEST(BadInput, NotARawlog) {
   test::TempDir dir;
   test::writeText(dir.file("notes.rawlog"), "this is a text file, not a rawlog\n");
   expectInputError([&] { consume(dir.file("notes.rawlog")); }, dir.file("notes.rawlog"), "entry 1");
+}
+
+TEST(BadInput, ImuPresenceFlagNeitherZeroNorOne) {
+  // Found by tests/fuzz/rawlog_fuzz.cpp: MRPT reads CObservationIMU::dataIsPresent as raw bytes;
+  // a flag byte of 64 was loaded as a bool (undefined behaviour, reported by UBSan).
+  test::TempDir dir;
+  std::string plain = decompress(writeImuRawlog(dir, {1.0}));
+  std::string flags(mrpt::obs::COUNT_IMU_DATA_FIELDS, '\0');
+  for (auto f : {mrpt::obs::IMU_WX, mrpt::obs::IMU_WY, mrpt::obs::IMU_WZ, mrpt::obs::IMU_X_ACC,
+                 mrpt::obs::IMU_Y_ACC, mrpt::obs::IMU_Z_ACC})
+    flags[f] = 1;
+  const size_t at = plain.find(flags);
+  ASSERT_NE(at, std::string::npos);
+  plain[at + mrpt::obs::IMU_WY] = 64;
+  const std::string path = dir.file("flag.rawlog");  // uncompressed: MRPT reads both
+  std::ofstream(path, std::ios::binary) << plain;
+  expectInputError([&] { consume(path); }, path, "entry 1: IMU sample missing or not finite");
 }
 
 TEST(BadInput, ImageMissingFromDisk) {
