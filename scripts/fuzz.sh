@@ -18,7 +18,7 @@ for seeds in tests/fuzz/corpus/*/; do
   cp "$seeds"* "$corpus/"
   echo "== $name: fuzzing for $SECONDS_PER_TARGET s (log $log)"
   if "$BUILD/bin/${name}_fuzz" -max_total_time="$SECONDS_PER_TARGET" -print_final_stats=1 \
-    -artifact_prefix="$artifacts" "$corpus" >"$log" 2>&1; then
+    -dict=tests/fuzz/numbers.dict -artifact_prefix="$artifacts" "$corpus" >"$log" 2>&1; then
     status=ok
   else
     status="FINDING (see $log, input in $artifacts)"
