@@ -65,7 +65,8 @@ void forEachTextRow(const std::string& path,
 double parseFiniteNumber(const std::string& token, const std::string& path, int line) {
   char* end = nullptr;
   const double x = std::strtod(token.c_str(), &end);
-  if (token.empty() || *end != '\0' || !std::isfinite(x))
+  // `end` must reach the end of the token: a NUL byte inside it would stop strtod early.
+  if (token.empty() || end != token.c_str() + token.size() || !std::isfinite(x))
     throw InputError(path, "line " + std::to_string(line), "not a finite number: '" + token + "'");
   return x;
 }

@@ -131,6 +131,21 @@ TEST(BadInput, TrajectoryTimestampsBackwards) {
   expectInputError([&] { readTum(dir.file("t.tum")); }, dir.file("t.tum"), "line 2");
 }
 
+TEST(BadInput, NulByteInsideANumber) {
+  // Found by tests/fuzz/trajectory_fuzz.cpp: strtod stops at a NUL byte, so "1<NUL>x" read as 1.
+  using namespace std::string_literals;
+  test::TempDir dir;
+  std::ofstream(dir.file("t.tum"), std::ios::binary) << "1 0 0 0 0 0 0 1\n2 0 0 0 0 0 0 1\0x\n"s;
+  expectInputError([&] { readTum(dir.file("t.tum")); }, dir.file("t.tum"),
+                   "line 2: not a finite number");
+  tinyCalibration().save(dir.file("calib.ini"));
+  std::string ini = test::readFile(dir.file("calib.ini"));
+  ini.replace(ini.find("fx = 10"), 7, "fx = 10\0x"s);
+  std::ofstream(dir.file("calib.ini"), std::ios::binary) << ini;
+  expectInputError([&] { Calibration::load(dir.file("calib.ini")); }, dir.file("calib.ini"),
+                   "line 5: 'fx': not a finite number");
+}
+
 TEST(BadInput, RawlogTimestampsBackwards) {
   test::TempDir dir;
   const std::string path = writeImuRawlog(dir, {1.0, 2.0, 1.5});
