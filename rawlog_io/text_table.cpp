@@ -83,4 +83,14 @@ std::vector<double> parseNumberRow(const std::vector<std::string>& fields, size_
   return values;
 }
 
+Eigen::Quaterniond unitQuaternion(double w, double x, double y, double z, const std::string& path,
+                                  int line) {
+  // The stable norm: with coefficients near 1e200 the plain sum of squares overflows, and
+  // normalizing by infinity gave a zero quaternion.
+  const Eigen::Vector4d coeffs(x, y, z, w);  // Eigen's storage order
+  if (coeffs.stableNorm() < 1e-6)
+    throw InputError(path, "line " + std::to_string(line), "zero quaternion");
+  return Eigen::Quaterniond(coeffs.stableNormalized());
+}
+
 }  // namespace rpvio

@@ -11,6 +11,7 @@
 #include <limits>
 
 #include "rawlog_io/calibration.h"
+#include "rawlog_io/euroc_csv.h"
 #include "rawlog_io/input_error.h"
 #include "rawlog_io/rawlog_labels.h"
 #include "rawlog_io/rawlog_reader.h"
@@ -131,6 +132,17 @@ TEST(BadInput, TrajectoryTimestampsBackwards) {
   expectInputError([&] { readTum(dir.file("t.tum")); }, dir.file("t.tum"), "line 2");
 }
 
+TEST(BadInput, HugeQuaternionCoefficientsGiveAUnitQuaternion) {
+  // Found by tests/fuzz/trajectory_fuzz.cpp: |q|^2 overflowed and normalizing gave q = 0.
+  test::TempDir dir;
+  test::writeText(dir.file("t.tum"), "1 0 0 0 0 11e200 0 0\n");
+  test::writeText(dir.file("t.csv"), "1000,0,0,0,0,0,-3e307,4e307\n");
+  const StampedPose tum = readTum(dir.file("t.tum")).at(0);
+  EXPECT_TRUE(tum.q.isApprox(Eigen::Quaterniond(0, 0, 1, 0))) << tum.q.coeffs().transpose();
+  const StampedPose csv = readEurocCsv(dir.file("t.csv")).at(0);
+  EXPECT_TRUE(csv.q.isApprox(Eigen::Quaterniond(0, 0, -0.6, 0.8))) << csv.q.coeffs().transpose();
+}
+
 TEST(BadInput, NulByteInsideANumber) {
   // Found by tests/fuzz/trajectory_fuzz.cpp: strtod stops at a NUL byte, so "1<NUL>x" read as 1.
   using namespace std::string_literals;
@@ -144,6 +156,30 @@ TEST(BadInput, NulByteInsideANumber) {
   std::ofstream(dir.file("calib.ini"), std::ios::binary) << ini;
   expectInputError([&] { Calibration::load(dir.file("calib.ini")); }, dir.file("calib.ini"),
                    "line 5: 'fx': not a finite number");
+}
+
+TEST(BadInput, ZeroQuaternionInEurocStateCsv) {
+  // Seen reviewing the readers for tests/fuzz (euroc_csv_fuzz's unit-quaternion check fails on
+  // it): q = 0 was accepted and left zero.
+  test::TempDir dir;
+  test::writeText(dir.file("gt.csv"),
+                  "#t,p,p,p,qw,qx,qy,qz,v,v,v,bw,bw,bw,ba,ba,ba\n"
+                  "1000,0,0,0,1,0,0,0,0,0,0,0,0,0,0,0,0\n"
+                  "2000,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0\n");
+  expectInputError([&] { readEurocStateCsv(dir.file("gt.csv")); }, dir.file("gt.csv"),
+                   "line 3: zero quaternion");
+}
+
+TEST(BadInput, KittiRotationNotOrthonormal) {
+  // Seen reviewing the readers for tests/fuzz: only det(R) ~ 1 was checked, so a shear passed, and
+  // so did huge entries (det = inf - inf = NaN; trajectory_fuzz's unit-quaternion check fails).
+  for (const std::string row :
+       {"1 5 0 0 0 1 0 0 0 0 1 0", "1e200 1e200 0 0 1e200 1e200 0 0 0 0 1 0"}) {
+    test::TempDir dir;
+    test::writeText(dir.file("k.txt"), "1 0 0 0 0 1 0 0 0 0 1 0\n" + row + "\n");
+    expectInputError([&] { readKitti(dir.file("k.txt")); }, dir.file("k.txt"),
+                     "line 2: rotation is not orthonormal");
+  }
 }
 
 TEST(BadInput, RawlogTimestampsBackwards) {
