@@ -2,6 +2,7 @@
 # Builds the libFuzzer targets of tests/fuzz (clang, ASan+UBSan) in BUILD and runs each for SECONDS
 # on its corpus copied to BUILD/fuzz-corpus/<name> (the repository's seeds are never written),
 # one fuzzer process at a time. Prints each target's executions; crashes go to BUILD/fuzz-artifacts.
+# Usage: scripts/fuzz.sh [BUILD [SECONDS [JOBS]]]   (make fuzz FUZZ_SECONDS=600)
 set -eu
 BUILD=${1:-build-fuzz}
 SECONDS_PER_TARGET=${2:-60}
