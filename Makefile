@@ -1,8 +1,9 @@
 # Thin wrapper: `make test` (deps, configure, build, ctest) and `make demo` (the main job).
 BUILD_DIR ?= build
 JOBS ?= 2
+FUZZ_SECONDS ?= 60
 
-.PHONY: deps build test demo test-asan format clean
+.PHONY: deps build test demo test-asan fuzz format clean
 
 deps:
 	@scripts/install-deps.sh
@@ -22,8 +23,13 @@ test-asan: deps
 	cmake --build build-asan -j$(JOBS)
 	cd build-asan && ctest --output-on-failure -j$(JOBS)
 
+# libFuzzer targets of tests/fuzz (clang), FUZZ_SECONDS each, one after the other, in build-fuzz.
+fuzz:
+	@scripts/install-deps.sh clang libclang-rt-dev
+	@scripts/fuzz.sh build-fuzz $(FUZZ_SECONDS) $(JOBS)
+
 format:
 	find rawlog_io planes_map mrpt_modules apps tests -name '*.h' -o -name '*.cpp' | xargs clang-format -i
 
 clean:
-	rm -rf $(BUILD_DIR) build-asan
+	rm -rf $(BUILD_DIR) build-asan build-fuzz

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -25,6 +26,15 @@ const char* modelName(DistortionModel m) {
   }
 }
 
+/// [camera] width or height: a whole number of pixels, positive and small enough for an int.
+int pixelCount(const IniFile& ini, const std::string& key) {
+  const double n = ini.number("camera", key);
+  if (!(n >= 1 && n <= std::numeric_limits<int>::max()) || n != std::floor(n))
+    throw InputError(ini.path(), "line " + std::to_string(ini.line("camera", key)),
+                     "'" + key + "' must be a positive whole number of pixels");
+  return static_cast<int>(n);
+}
+
 }  // namespace
 
 Calibration Calibration::load(const std::string& path) {
@@ -32,14 +42,14 @@ Calibration Calibration::load(const std::string& path) {
     throw InputError(path, "", "calibration file not found");
   const IniFile ini(path);
   Calibration c;
-  c.camera.width = static_cast<int>(ini.number("camera", "width"));
-  c.camera.height = static_cast<int>(ini.number("camera", "height"));
+  c.camera.width = pixelCount(ini, "width");
+  c.camera.height = pixelCount(ini, "height");
   c.camera.fx = ini.number("camera", "fx");
   c.camera.fy = ini.number("camera", "fy");
   c.camera.cx = ini.number("camera", "cx");
   c.camera.cy = ini.number("camera", "cy");
-  if (c.camera.width <= 0 || c.camera.height <= 0 || c.camera.fx <= 0 || c.camera.fy <= 0)
-    throw InputError(path, "[camera]", "image size and focal lengths must be positive");
+  if (c.camera.fx <= 0 || c.camera.fy <= 0)
+    throw InputError(path, "[camera]", "focal lengths must be positive");
   const std::string model = ini.text("camera", "distortion_model");
   if (model == "radtan") {
     c.camera.model = DistortionModel::RadTan;

@@ -35,7 +35,7 @@ std::vector<EurocStateSample> readEurocStateCsv(const std::string& csv) {
     s.t = v[0] * 1e-9;
     checkIncreasing(s.t, states.empty() ? 0 : states.back().t, csv, line, states.empty());
     s.p = {v[1], v[2], v[3]};
-    s.q = Eigen::Quaterniond(v[4], v[5], v[6], v[7]).normalized();
+    s.q = unitQuaternion(v[4], v[5], v[6], v[7], csv, line);
     s.v = {v[8], v[9], v[10]};
     s.gyro_bias = {v[11], v[12], v[13]};
     s.accel_bias = {v[14], v[15], v[16]};

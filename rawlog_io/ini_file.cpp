@@ -63,7 +63,7 @@ std::vector<double> IniFile::numbers(const std::string& section, const std::stri
   for (std::string token; ss >> token;) {
     char* end = nullptr;
     const double x = std::strtod(token.c_str(), &end);
-    if (*end != '\0' || !std::isfinite(x))
+    if (end != token.c_str() + token.size() || !std::isfinite(x))  // also a NUL inside the token
       throw InputError(path_, lineRef(at), "'" + key + "': not a finite number: " + token);
     out.push_back(x);
   }

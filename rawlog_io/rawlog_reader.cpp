@@ -4,6 +4,7 @@
 #include <mrpt/io/lazy_load_path.h>
 #include <mrpt/serialization/CArchive.h>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -120,10 +121,14 @@ ImuSample toImuSample(const mrpt::obs::CObservationIMU& obs, const RawlogReader&
   const TIMUDataIndex fields[6] = {IMU_WX, IMU_WY, IMU_WZ, IMU_X_ACC, IMU_Y_ACC, IMU_Z_ACC};
   double v[6];
   for (int i = 0; i < 6; ++i) {
-    if (!obs.has(fields[i]) || !std::isfinite(obs.get(fields[i])))
+    // MRPT reads the presence flags as raw bytes: in a corrupt file they may be neither 0 nor 1,
+    // and loading such a byte as a bool (has(), get()) is undefined behaviour.
+    unsigned char present = 0;
+    std::memcpy(&present, &obs.dataIsPresent[fields[i]], 1);
+    v[i] = obs.rawMeasurements[fields[i]];
+    if (present != 1 || !std::isfinite(v[i]))
       throw InputError(reader.path(), "entry " + std::to_string(reader.entriesRead()),
                        "IMU sample missing or not finite");
-    v[i] = obs.get(fields[i]);
   }
   ImuSample s;
   s.t = toSeconds(obs.timestamp);

@@ -65,7 +65,8 @@ void forEachTextRow(const std::string& path,
 double parseFiniteNumber(const std::string& token, const std::string& path, int line) {
   char* end = nullptr;
   const double x = std::strtod(token.c_str(), &end);
-  if (token.empty() || *end != '\0' || !std::isfinite(x))
+  // `end` must reach the end of the token: a NUL byte inside it would stop strtod early.
+  if (token.empty() || end != token.c_str() + token.size() || !std::isfinite(x))
     throw InputError(path, "line " + std::to_string(line), "not a finite number: '" + token + "'");
   return x;
 }
@@ -80,6 +81,16 @@ std::vector<double> parseNumberRow(const std::vector<std::string>& fields, size_
   values.reserve(fields.size());
   for (const auto& f : fields) values.push_back(parseFiniteNumber(f, path, line));
   return values;
+}
+
+Eigen::Quaterniond unitQuaternion(double w, double x, double y, double z, const std::string& path,
+                                  int line) {
+  // The stable norm: with coefficients near 1e200 the plain sum of squares overflows, and
+  // normalizing by infinity gave a zero quaternion.
+  const Eigen::Vector4d coeffs(x, y, z, w);  // Eigen's storage order
+  if (coeffs.stableNorm() < 1e-6)
+    throw InputError(path, "line " + std::to_string(line), "zero quaternion");
+  return Eigen::Quaterniond(coeffs.stableNormalized());
 }
 
 }  // namespace rpvio

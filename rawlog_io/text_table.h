@@ -1,6 +1,7 @@
 #pragma once
 // Line-oriented numeric text files (TUM, KITTI, EuRoC CSV): comment/blank lines skipped, fields
 // split on commas (when the line has one) or whitespace. Errors name the file and the line.
+#include <Eigen/Geometry>
 #include <functional>
 #include <string>
 #include <vector>
@@ -26,5 +27,10 @@ double parseFiniteNumber(const std::string& token, const std::string& path, int 
 /// All fields as finite numbers, between min_count and max_count of them.
 std::vector<double> parseNumberRow(const std::vector<std::string>& fields, size_t min_count,
                                    size_t max_count, const std::string& path, int line);
+
+/// The rotation of the quaternion (w, x, y, z) as a unit quaternion, or InputError(path, "line N")
+/// when it is zero (norm below 1e-6).
+Eigen::Quaterniond unitQuaternion(double w, double x, double y, double z, const std::string& path,
+                                  int line);
 
 }  // namespace rpvio

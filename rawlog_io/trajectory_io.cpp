@@ -21,13 +21,6 @@ void forEachRow(const std::string& path, size_t min_count, size_t max_count, Row
   });
 }
 
-Eigen::Quaterniond checkedQuaternion(double w, double x, double y, double z,
-                                     const std::string& path, int line_no) {
-  Eigen::Quaterniond q(w, x, y, z);
-  if (q.norm() < 1e-6) throw InputError(path, "line " + std::to_string(line_no), "zero quaternion");
-  return q.normalized();
-}
-
 void checkNotBackwards(const Trajectory& traj, double t, const std::string& path, int line_no) {
   // Equal stamps occur in real files (TUM RGB-D ground truth printed to 0.1 ms); only a step
   // backwards is an error.
@@ -44,7 +37,7 @@ Trajectory readTum(const std::string& path) {
     StampedPose p;
     p.t = v[0];
     p.p = {v[1], v[2], v[3]};
-    p.q = checkedQuaternion(v[7], v[4], v[5], v[6], path, line_no);
+    p.q = unitQuaternion(v[7], v[4], v[5], v[6], path, line_no);
     traj.push_back(p);
   });
   return traj;
@@ -58,7 +51,9 @@ Trajectory readKitti(const std::string& path) {
     StampedPose p;
     p.t = static_cast<double>(traj.size());
     p.p = {v[3], v[7], v[11]};
-    if (std::abs(r.determinant() - 1.0) > 1e-3)
+    // Orthonormal with determinant +1 (a determinant near 1 alone lets shears through); written so
+    // that NaN, from products of huge entries, fails too.
+    if (!((r.transpose() * r - Eigen::Matrix3d::Identity()).norm() < 1e-3 && r.determinant() > 0))
       throw InputError(path, "line " + std::to_string(line_no), "rotation is not orthonormal");
     p.q = Eigen::Quaterniond(r).normalized();
     traj.push_back(p);
@@ -74,7 +69,7 @@ Trajectory readEurocCsv(const std::string& path) {
     p.t = v[0] * 1e-9;
     checkNotBackwards(traj, p.t, path, line_no);
     p.p = {v[1], v[2], v[3]};
-    p.q = checkedQuaternion(v[4], v[5], v[6], v[7], path, line_no);
+    p.q = unitQuaternion(v[4], v[5], v[6], v[7], path, line_no);
     traj.push_back(p);
   });
   return traj;

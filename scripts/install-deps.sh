@@ -1,10 +1,10 @@
 #!/bin/sh
 # Installs the Debian bookworm packages rpvio needs. Idempotent: a no-op when all are present.
-# Run as root (or through sudo). Usage: scripts/install-deps.sh
+# Run as root (or through sudo). Usage: scripts/install-deps.sh [extra packages]
 set -eu
 
 PACKAGES="cmake g++ make pkg-config libmrpt-dev mrpt-apps libceres-dev libopencv-dev \
-liboctomap-dev libeigen3-dev libgtest-dev libbenchmark-dev"
+liboctomap-dev libeigen3-dev libgtest-dev libbenchmark-dev $*"
 
 missing=""
 for pkg in $PACKAGES; do

@@ -11,6 +11,7 @@
 #include <limits>
 
 #include "rawlog_io/calibration.h"
+#include "rawlog_io/euroc_csv.h"
 #include "rawlog_io/input_error.h"
 #include "rawlog_io/rawlog_labels.h"
 #include "rawlog_io/rawlog_reader.h"
@@ -73,6 +74,15 @@ std::string writeImuRawlog(const test::TempDir& dir, const std::vector<double>& 
   return path;
 }
 
+/// The uncompressed bytes of a gz rawlog.
+std::string decompress(const std::string& path) {
+  std::string plain;
+  mrpt::io::CFileGZInputStream in(path);
+  char buf[4096];
+  while (size_t n = in.Read(buf, sizeof(buf))) plain.append(buf, n);
+  return plain;
+}
+
 TEST(BadInput, MissingRawlog) {
   expectInputError([] { RawlogReader("/nonexistent/seq.rawlog"); }, "/nonexistent/seq.rawlog",
                    "not found");
@@ -95,6 +105,20 @@ TEST(BadInput, CalibrationMalformedValue) {
                    "line 5");
 }
 
+TEST(BadInput, CalibrationImageSizeNotAnInt) {
+  // Found by tests/fuzz/calibration_fuzz.cpp: 8e9 was cast to int (undefined behaviour).
+  test::TempDir dir;
+  tinyCalibration().save(dir.file("calib.ini"));
+  const std::string text = test::readFile(dir.file("calib.ini"));
+  for (const std::string width : {"8000000001", "0", "7.5"}) {
+    std::string bad = text;
+    bad.replace(bad.find("width = 8"), 9, "width = " + width);
+    test::writeText(dir.file("calib.ini"), bad);
+    expectInputError([&] { Calibration::load(dir.file("calib.ini")); }, dir.file("calib.ini"),
+                     "line 3: 'width' must be a positive whole number of pixels");
+  }
+}
+
 TEST(BadInput, MalformedCsvLine) {
   test::TempDir dir;
   test::writeText(dir.file("gt.csv"),
@@ -108,6 +132,56 @@ TEST(BadInput, TrajectoryTimestampsBackwards) {
   expectInputError([&] { readTum(dir.file("t.tum")); }, dir.file("t.tum"), "line 2");
 }
 
+TEST(BadInput, HugeQuaternionCoefficientsGiveAUnitQuaternion) {
+  // Found by tests/fuzz/trajectory_fuzz.cpp: |q|^2 overflowed and normalizing gave q = 0.
+  test::TempDir dir;
+  test::writeText(dir.file("t.tum"), "1 0 0 0 0 11e200 0 0\n");
+  test::writeText(dir.file("t.csv"), "1000,0,0,0,0,0,-3e307,4e307\n");
+  const StampedPose tum = readTum(dir.file("t.tum")).at(0);
+  EXPECT_TRUE(tum.q.isApprox(Eigen::Quaterniond(0, 0, 1, 0))) << tum.q.coeffs().transpose();
+  const StampedPose csv = readEurocCsv(dir.file("t.csv")).at(0);
+  EXPECT_TRUE(csv.q.isApprox(Eigen::Quaterniond(0, 0, -0.6, 0.8))) << csv.q.coeffs().transpose();
+}
+
+TEST(BadInput, NulByteInsideANumber) {
+  // Found by tests/fuzz/trajectory_fuzz.cpp: strtod stops at a NUL byte, so "1<NUL>x" read as 1.
+  using namespace std::string_literals;
+  test::TempDir dir;
+  std::ofstream(dir.file("t.tum"), std::ios::binary) << "1 0 0 0 0 0 0 1\n2 0 0 0 0 0 0 1\0x\n"s;
+  expectInputError([&] { readTum(dir.file("t.tum")); }, dir.file("t.tum"),
+                   "line 2: not a finite number");
+  tinyCalibration().save(dir.file("calib.ini"));
+  std::string ini = test::readFile(dir.file("calib.ini"));
+  ini.replace(ini.find("fx = 10"), 7, "fx = 10\0x"s);
+  std::ofstream(dir.file("calib.ini"), std::ios::binary) << ini;
+  expectInputError([&] { Calibration::load(dir.file("calib.ini")); }, dir.file("calib.ini"),
+                   "line 5: 'fx': not a finite number");
+}
+
+TEST(BadInput, ZeroQuaternionInEurocStateCsv) {
+  // Seen reviewing the readers for tests/fuzz (euroc_csv_fuzz's unit-quaternion check fails on
+  // it): q = 0 was accepted and left zero.
+  test::TempDir dir;
+  test::writeText(dir.file("gt.csv"),
+                  "#t,p,p,p,qw,qx,qy,qz,v,v,v,bw,bw,bw,ba,ba,ba\n"
+                  "1000,0,0,0,1,0,0,0,0,0,0,0,0,0,0,0,0\n"
+                  "2000,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0\n");
+  expectInputError([&] { readEurocStateCsv(dir.file("gt.csv")); }, dir.file("gt.csv"),
+                   "line 3: zero quaternion");
+}
+
+TEST(BadInput, KittiRotationNotOrthonormal) {
+  // Seen reviewing the readers for tests/fuzz: only det(R) ~ 1 was checked, so a shear passed, and
+  // so did huge entries (det = inf - inf = NaN; trajectory_fuzz's unit-quaternion check fails).
+  for (const std::string row :
+       {"1 5 0 0 0 1 0 0 0 0 1 0", "1e200 1e200 0 0 1e200 1e200 0 0 0 0 1 0"}) {
+    test::TempDir dir;
+    test::writeText(dir.file("k.txt"), "1 0 0 0 0 1 0 0 0 0 1 0\n" + row + "\n");
+    expectInputError([&] { readKitti(dir.file("k.txt")); }, dir.file("k.txt"),
+                     "line 2: rotation is not orthonormal");
+  }
+}
+
 TEST(BadInput, RawlogTimestampsBackwards) {
   test::TempDir dir;
   const std::string path = writeImuRawlog(dir, {1.0, 2.0, 1.5});
@@ -118,12 +192,7 @@ TEST(BadInput, TruncatedRawlog) {
   test::TempDir dir;
   const std::string full = writeImuRawlog(dir, {1.0, 2.0, 3.0, 4.0});
   // Decompress-level truncation: keep a prefix of the uncompressed stream, recompressed.
-  std::string plain;
-  {
-    mrpt::io::CFileGZInputStream in(full);
-    char buf[4096];
-    while (size_t n = in.Read(buf, sizeof(buf))) plain.append(buf, n);
-  }
+  const std::string plain = decompress(full);
   const std::string cut = dir.file("cut.rawlog");
   {
     mrpt::io::CFileGZOutputStream out(cut);
@@ -136,6 +205,23 @@ TEST(BadInput, NotARawlog) {
   test::TempDir dir;
   test::writeText(dir.file("notes.rawlog"), "this is a text file, not a rawlog\n");
   expectInputError([&] { consume(dir.file("notes.rawlog")); }, dir.file("notes.rawlog"), "entry 1");
+}
+
+TEST(BadInput, ImuPresenceFlagNeitherZeroNorOne) {
+  // Found by tests/fuzz/rawlog_fuzz.cpp: MRPT reads CObservationIMU::dataIsPresent as raw bytes;
+  // a flag byte of 64 was loaded as a bool (undefined behaviour, reported by UBSan).
+  test::TempDir dir;
+  std::string plain = decompress(writeImuRawlog(dir, {1.0}));
+  std::string flags(mrpt::obs::COUNT_IMU_DATA_FIELDS, '\0');
+  for (auto f : {mrpt::obs::IMU_WX, mrpt::obs::IMU_WY, mrpt::obs::IMU_WZ, mrpt::obs::IMU_X_ACC,
+                 mrpt::obs::IMU_Y_ACC, mrpt::obs::IMU_Z_ACC})
+    flags[f] = 1;
+  const size_t at = plain.find(flags);
+  ASSERT_NE(at, std::string::npos);
+  plain[at + mrpt::obs::IMU_WY] = 64;
+  const std::string path = dir.file("flag.rawlog");  // uncompressed: MRPT reads both
+  std::ofstream(path, std::ios::binary) << plain;
+  expectInputError([&] { consume(path); }, path, "entry 1: IMU sample missing or not finite");
 }
 
 TEST(BadInput, ImageMissingFromDisk) {
