@@ -58,7 +58,9 @@ RunOutcome simulateAndRun(const std::string& sim_options, const std::string& dir
   RunOutcome r;
   const std::string tum = test::readFile(dir + "/out/trajectory.tum");
   EXPECT_EQ(tum.find("nan"), std::string::npos);
-  r.trajectory = readTum(dir + "/out/trajectory.tum");
+  // A run that never initialized writes a trajectory file without poses.
+  if (tum.find_first_of("0123456789") != std::string::npos)
+    r.trajectory = readTum(dir + "/out/trajectory.tum");
   r.summary = test::readFile(dir + "/out/summary.json");
   EXPECT_EQ(r.summary.find("nan"), std::string::npos) << r.summary;
   if (r.trajectory.size() >= 3)
