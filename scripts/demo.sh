@@ -14,4 +14,4 @@ echo "== running rpvio-single"
 echo "== evaluating (SE(3) alignment)"
 "$BUILD/bin/rpvio-eval" --gt "$OUT/C4/groundtruth.tum" --est "$OUT/rpvio-single/trajectory.tum" \
   --label rpvio-single --align se3 --plot "$OUT/trajectory.png" --json "$OUT/accuracy.json"
-echo "== outputs: $OUT/rpvio-single/{trajectory.tum,stats.csv,summary.json}, plot $OUT/trajectory.png"
+echo "== outputs: $OUT/rpvio-single/{trajectory.tum,stats.csv,summary.json}, plane map $OUT/rpvio-single/planes.{yaml,ply,bt,3Dscene} + planes_topview.png, plot $OUT/trajectory.png"
