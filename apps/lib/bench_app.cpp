@@ -11,6 +11,7 @@
 #include <functional>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -123,8 +124,9 @@ void generateSequences(const CommandLine& cli, const std::string& suite,
     if (!f.empty()) throw std::runtime_error("simulation failed: " + f);
 }
 
-/// Fills the run's evaluation and timing from its output folder.
-void evaluateRun(BenchRun& run, const Trajectory& gt) {
+/// Fills the run's evaluation and timing from its output folder; the evaluation itself when there
+/// is one (for the plots).
+std::optional<eval::EvalResult> evaluateRun(BenchRun& run, const Trajectory& gt) {
   const fs::path dir(run.dir);
   const std::string summary = readText(dir / "summary.json");
   auto number = [&](const char* key) {
@@ -143,33 +145,31 @@ void evaluateRun(BenchRun& run, const Trajectory& gt) {
   run.peak_memory_mb = number("peak_memory_mb");
   if (run.exit_code != 0) {
     run.error = "rpvio-slam exited with " + std::to_string(run.exit_code);
-    return;
+    return std::nullopt;
   }
   try {
-    const eval::EvalResult r = eval::evaluate(gt, readTum((dir / "trajectory.tum").string()), {});
+    eval::EvalResult r = eval::evaluate(gt, readTum((dir / "trajectory.tum").string()), {});
     run.ate_rmse = r.ate.rmse;
     run.ate_rotation_deg = r.ate_rotation_rmse_deg;
     run.coverage = r.coverage;
     run.evaluated = true;
+    return r;
   } catch (const std::exception& e) {
     run.error = e.what();
+    return std::nullopt;
   }
 }
 
+/// `first_runs[k]`: the evaluation of runs[k] when it is an evaluated run 0.
 void writePlots(const BenchSetup& setup, const std::vector<BenchRun>& runs,
+                const std::vector<std::optional<eval::EvalResult>>& first_runs,
                 const std::map<std::string, Trajectory>& gts, const fs::path& out) {
   fs::create_directories(out / "plots");
   for (const auto& sequence : setup.sequences) {
-    std::vector<eval::EvalResult> results;
-    std::vector<std::string> labels;
-    for (const BenchRun& r : runs) {
-      if (r.sequence != sequence || r.run != 0 || !r.evaluated) continue;
-      results.push_back(eval::evaluate(gts.at(sequence),
-                                       readTum((fs::path(r.dir) / "trajectory.tum").string()), {}));
-      labels.push_back(r.mode);
-    }
     std::vector<eval::PlottedEstimate> plotted;
-    for (size_t k = 0; k < results.size(); ++k) plotted.push_back({labels[k], &results[k]});
+    for (size_t k = 0; k < runs.size(); ++k)
+      if (runs[k].sequence == sequence && first_runs[k])
+        plotted.push_back({runs[k].mode, &*first_runs[k]});
     eval::writeTrajectoryPlot((out / "plots" / (sequence + ".png")).string(), gts.at(sequence),
                               plotted, sequence + " (run 0 of each mode, SE(3) alignment)");
   }
@@ -221,6 +221,7 @@ int run(int argc, char** argv) {
       }
   const std::string slam = executableDir() + "/rpvio-slam";
   Progress progress("run", runs.size());
+  std::vector<std::optional<eval::EvalResult>> first_runs(runs.size());  // kept for the plots
   runParallel(runs.size(), setup.jobs, [&](size_t k) {
     BenchRun& r = runs[k];
     const fs::path seq = fs::path(setup.suite_dir) / r.sequence;
@@ -232,7 +233,8 @@ int run(int argc, char** argv) {
                               (seq / "seq.rawlog").string(), "--out", r.dir, "--quiet"},
                              (fs::path(r.dir) / "log.txt").string());
     r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    evaluateRun(r, gts.at(r.sequence));
+    auto evaluation = evaluateRun(r, gts.at(r.sequence));
+    if (r.run == 0) first_runs[k] = std::move(evaluation);
     char line[256];
     if (r.evaluated)
       std::snprintf(line, sizeof line, "%s %s run %d: ATE %.3f m, coverage %.0f%%, %.0f s",
@@ -245,7 +247,7 @@ int run(int argc, char** argv) {
   });
   setup.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  writePlots(setup, runs, gts, out);
+  writePlots(setup, runs, first_runs, gts, out);
   writeFileAtomically((out / "results.json").string(),
                       [&](std::ostream& s) { s << resultsJson(setup, runs); });
   const std::string markdown = resultsMarkdown(setup, runs);

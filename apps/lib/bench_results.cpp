@@ -5,6 +5,7 @@
 #include <functional>
 #include <sstream>
 
+#include "apps/evaluation/error_stats.h"
 #include "apps/lib/json_text.h"
 
 namespace rpvio::apps {
@@ -32,7 +33,7 @@ double medianOf(const std::vector<const BenchRun*>& runs,
                 const std::function<double(const BenchRun&)>& field) {
   std::vector<double> values;
   for (const BenchRun* r : runs) values.push_back(field(*r));
-  return median(values);
+  return eval::computeStats(values).median;
 }
 
 /// One table: a row per mode, a column per sequence, `cell` formats the runs of one pair.
@@ -54,14 +55,6 @@ void table(std::ostream& out, const BenchSetup& setup, const std::vector<BenchRu
 
 bool tracked(const BenchRun& run, const BenchSetup& setup) {
   return run.evaluated && run.coverage >= setup.min_coverage;
-}
-
-double median(std::vector<double> values) {
-  if (values.empty()) return 0;
-  const size_t mid = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + mid, values.end());
-  if (values.size() % 2) return values[mid];
-  return 0.5 * (values[mid] + *std::max_element(values.begin(), values.begin() + mid));
 }
 
 std::string resultsMarkdown(const BenchSetup& setup, const std::vector<BenchRun>& runs) {

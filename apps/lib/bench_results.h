@@ -32,9 +32,6 @@ struct BenchSetup {
 /// A run counts in the ATE table when it was evaluated and covered the sequence.
 bool tracked(const BenchRun& run, const BenchSetup& setup);
 
-/// Median of the values (0 for none).
-double median(std::vector<double> values);
-
 std::string resultsMarkdown(const BenchSetup& setup, const std::vector<BenchRun>& runs);
 std::string resultsJson(const BenchSetup& setup, const std::vector<BenchRun>& runs);
 

@@ -43,7 +43,6 @@ const std::set<std::string> kFaultOptions = {
 sim::FaultInjection faultOptions(const CommandLine& cli) {
   sim::FaultInjection f;
   auto intervals = [&](const char* name, std::vector<sim::TimeInterval>& out) {
-    if (!cli.has(name)) return;
     for (const std::string& v : cli.values(name)) {
       try {
         out.push_back(sim::parseTimeInterval(v, std::string("--") + name));
@@ -52,14 +51,13 @@ sim::FaultInjection faultOptions(const CommandLine& cli) {
       }
     }
   };
-  if (cli.has("drop-frame"))
-    for (const std::string& v : cli.values("drop-frame")) {
-      char* end = nullptr;
-      const double t = std::strtod(v.c_str(), &end);
-      if (end == v.c_str() || *end != '\0' || !(t >= 0))
-        throw UsageError("--drop-frame expects a time in seconds, got '" + v + "'");
-      f.dropped_frames.push_back(t);
-    }
+  for (const std::string& v : cli.values("drop-frame")) {
+    char* end = nullptr;
+    const double t = std::strtod(v.c_str(), &end);
+    if (end == v.c_str() || *end != '\0' || !(t >= 0))
+      throw UsageError("--drop-frame expects a time in seconds, got '" + v + "'");
+    f.dropped_frames.push_back(t);
+  }
   intervals("drop-frames", f.dropped_bursts);
   intervals("imu-gap", f.imu_gaps);
   intervals("blackout", f.blackouts);

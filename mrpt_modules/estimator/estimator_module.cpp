@@ -66,8 +66,6 @@ void SlidingWindowEstimatorModule::initialize(const IniFile& ini, const std::str
   o.reinit_max_relative_scale_sigma =
       ini.numberOr(s, "reinit_max_scale_sigma", o.reinit_max_relative_scale_sigma);
   o.max_reconnect_s = ini.numberOr(s, "max_reconnect_s", o.max_reconnect_s);
-  o.init_retry_frames = static_cast<size_t>(
-      ini.numberOr(s, "init_retry_frames", static_cast<double>(o.init_retry_frames)));
   o.init.min_window_s = ini.numberOr(s, "init_window_s", o.init.min_window_s);
   o.init.min_parallax_px = ini.numberOr(s, "init_parallax_px", o.init.min_parallax_px);
   o.init.virtual_focal = o.virtual_focal;

@@ -386,14 +386,7 @@ void SlidingWindowEstimator::tryInitialize() {
       init = fallback_initializer_.tryInitialize(frames, imu);
   }
   status_ = init.ok() ? "tracking" : toString(init.status);
-  if (!init.ok()) {
-    // A failure after the bundle adjustment costs a second or so: not again on the next frame.
-    if (init.status == InitStatus::kGeometryFailed ||
-        init.status == InitStatus::kTooLittleImuExcitation ||
-        init.status == InitStatus::kAlignmentRejected)
-      init_skip_frames_ = options_.init_retry_frames;
-    return;
-  }
+  if (!init.ok()) return;
   // Keyframes: evenly spaced over the initialization window, ending at its newest frame.
   const size_t n = frames.size();
   const size_t step =
@@ -511,7 +504,6 @@ void SlidingWindowEstimator::reset(const std::string& cause) {
   init_buffer_.clear();
   planes_.clear();
   used_planes_.clear();
-  init_skip_frames_ = 0;
   first_geometry_failure_t_ = -1;
 }
 
@@ -535,10 +527,7 @@ std::optional<StateEstimate> SlidingWindowEstimator::addFrame(
     if (frame.features.empty()) init_buffer_.clear();  // no structure can span a blank frame
     init_buffer_.emplace_back(frame, imu_since_previous);
     if (init_buffer_.size() > options_.init_window_frames) init_buffer_.pop_front();
-    if (init_skip_frames_ > 0)
-      --init_skip_frames_;
-    else
-      tryInitialize();
+    tryInitialize();
     report_.optimization_ms = elapsed_ms();
     if (!initialized_) return std::nullopt;
     report_.state = "tracking";

@@ -76,7 +76,6 @@ struct EstimatorOptions {
   // when the reset was at most this long ago (else the trajectory continues in a new world).
   double max_reconnect_s = 20;
   size_t init_window_frames = 41;  // frames kept while initializing (2 s at 20 Hz)
-  size_t init_retry_frames = 0;    // frames skipped after a costly failed initialization attempt
   InitializerOptions init;
   PlanesMapOptions planes_map;
 };
@@ -173,7 +172,6 @@ class SlidingWindowEstimator {
   PlanesMap planes_map_;
   double last_seen_features_t_ = 0;
   double first_geometry_failure_t_ = -1;  // of the configured initializer (for the fallback)
-  size_t init_skip_frames_ = 0;           // initialization attempts left out before the next one
   struct GoodState {
     double t = 0;
     double pose[7];

@@ -20,12 +20,6 @@ double clip(double value, double limit) {
 
 }  // namespace
 
-bool FaultInjection::any() const {
-  return !dropped_frames.empty() || !dropped_bursts.empty() || !imu_gaps.empty() ||
-         !blackouts.empty() || !motion_blur.empty() || !no_planes.empty() || accel_saturation > 0 ||
-         gyro_saturation > 0;
-}
-
 bool FaultInjection::dropsFrame(double t, double period) const {
   for (double d : dropped_frames)
     if (std::abs(t - d) < 0.5 * period) return true;

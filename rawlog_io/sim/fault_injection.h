@@ -27,7 +27,6 @@ struct FaultInjection {
   double accel_saturation = 0;          // m/s², |component| clipped to this (0: off)
   double gyro_saturation = 0;           // rad/s, likewise
 
-  bool any() const;
   /// Whether the frame at time t (frame period `period`) is dropped.
   bool dropsFrame(double t, double period) const;
   bool dropsImu(double t) const;
