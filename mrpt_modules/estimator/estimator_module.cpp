@@ -107,9 +107,9 @@ void SlidingWindowEstimatorModule::onFrame(const FeatureFrame& camera_frame) {
   if (estimator_->status() != last_status_) {
     last_status_ = estimator_->status();
     if (estimator_->lastReport().state == "reset")
-      MRPT_LOG_WARN_STREAM("t=" << frame.t << " s: " << last_status_);
+      MRPT_LOG_WARN_STREAM("t=" << frame.t << " s: " << estimator_->statusDetail());
     else
-      MRPT_LOG_INFO_STREAM("t=" << frame.t << " s: " << last_status_);
+      MRPT_LOG_INFO_STREAM("t=" << frame.t << " s: " << estimator_->statusDetail());
   }
   if (state) {
     if (initialized_at_ < 0) initialized_at_ = frame.t;

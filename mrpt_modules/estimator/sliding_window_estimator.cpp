@@ -386,6 +386,7 @@ void SlidingWindowEstimator::tryInitialize() {
       init = fallback_initializer_.tryInitialize(frames, imu);
   }
   status_ = init.ok() ? "tracking" : toString(init.status);
+  status_detail_ = init.reason;
   if (!init.ok()) return;
   // Keyframes: evenly spaced over the initialization window, ending at its newest frame.
   const size_t n = frames.size();
@@ -496,6 +497,7 @@ void SlidingWindowEstimator::reconnect() {
 void SlidingWindowEstimator::reset(const std::string& cause) {
   reset_log_.push_back({window_.empty() ? 0 : window_.back()->features.t, cause});
   status_ = "reset: " + cause;
+  status_detail_ = status_;
   report_.state = "reset";
   initialized_ = false;
   window_.clear();

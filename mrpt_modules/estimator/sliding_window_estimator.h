@@ -71,7 +71,7 @@ struct EstimatorOptions {
   // diverges on some windows, e.g. with an unknown 30 ms camera-IMU offset), the same window is
   // tried with the essential-matrix method, same thresholds.
   bool init_fallback = true;
-  double init_fallback_after_s = 1.0;  // ... once it has failed for this long
+  double init_fallback_after_s = 0;  // ... once it has failed for this long (0: at once)
   // ... and the new window is placed in the old world by dead reckoning from the last good state
   // when the reset was at most this long ago (else the trajectory continues in a new world).
   double max_reconnect_s = 20;
@@ -112,7 +112,10 @@ class SlidingWindowEstimator {
   bool initialized() const { return initialized_; }
   size_t resets() const { return reset_log_.size(); }
   const std::vector<ResetEvent>& resetLog() const { return reset_log_; }
+  /// "tracking", "reset: <cause>" or the initializer's status (changes when the reason does).
   const std::string& status() const { return status_; }
+  /// The status with its figures (e.g. "too little parallax (12.3 px)"): for the log.
+  const std::string& statusDetail() const { return status_detail_; }
   const FrameReport& lastReport() const { return report_; }
   const PlaneEstimates& planes() const { return planes_; }
   const PlanesMap& planesMap() const { return planes_map_; }
@@ -160,6 +163,7 @@ class SlidingWindowEstimator {
   double mount_[7];                   // T_BC as a (constant) pose block
   bool initialized_ = false;
   std::string status_ = "collecting frames";
+  std::string status_detail_ = status_;
   std::vector<ResetEvent> reset_log_;
   FrameReport report_;
   std::deque<std::pair<FeatureFrame, std::vector<ImuSample>>> init_buffer_;
