@@ -25,25 +25,13 @@ struct RunResult {
 RunResult run(HomographyPlanes homography, double duration) {
   sim::SimConfig config;
   config.duration = duration;
-  if (getenv("NOISEFREE")) config.imu_noise = false;
-  if (getenv("NOBIAS")) config.initial_bias = {};
   sim::Simulator sim(config);
-  Calibration calib = sim.calibration();
-  if (getenv("IMUSCALE")) {
-    double s = atof(getenv("IMUSCALE"));
-    calib.imu.accel_noise_density *= s;
-    calib.imu.gyro_noise_density *= s;
-  }
-  if (getenv("RWSCALE")) {
-    double s = atof(getenv("RWSCALE"));
-    calib.imu.accel_random_walk *= s;
-    calib.imu.gyro_random_walk *= s;
-  }
+  const Calibration calib = sim.calibration();
   const auto imu = sim.imuStream();
   const auto times = sim.frameTimes();
   EstimatorOptions options;
+  options.pixel_sigma = 0.5;  // the features are exact: the default 1.5 px under-weights them
   options.homography_planes = homography;
-  if (getenv("WINDOW")) options.window_size = atoi(getenv("WINDOW"));
   SlidingWindowEstimator estimator(calib, options);
   // Every second, a 12x10 grid of pixels cast into the scene gives landmarks seen for 3 s.
   std::vector<Landmark> landmarks;
