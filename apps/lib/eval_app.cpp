@@ -8,6 +8,7 @@
 #include "apps/evaluation/trajectory_plot.h"
 #include "apps/lib/command_line.h"
 #include "apps/lib/json_text.h"
+#include "planes_map/plane_map_exporters.h"
 #include "rawlog_io/atomic_file.h"
 #include "rawlog_io/input_error.h"
 
@@ -18,9 +19,13 @@ const char* kUsage =
     "usage: rpvio-eval --gt FILE --est FILE [--est FILE2 ...] [--label NAME ...]\n"
     "                  [--align se3|sim3|posyaw|none] [--max-dt SEC] [--format tum|kitti|euroc]\n"
     "                  [--rpe-distance M] [--rpe-frames N] [--plot OUT.png] [--json OUT.json]\n"
+    "                  [--planes planes.yaml --gt-planes groundtruth_planes.yaml]\n"
     "  Formats are recognized from the content unless --format is given. KITTI files associate by\n"
     "  index, others by nearest timestamp within --max-dt (default 0.01 s). Default alignment "
-    "se3.\n";
+    "se3.\n"
+    "  --planes: the plane map of the first estimate, matched to the true planes by mask label\n"
+    "  and moved by that estimate's alignment: map entries per true plane, normal and offset\n"
+    "  errors.\n";
 
 Trajectory readWithFormat(const std::string& path, const std::string& format) {
   if (format.empty()) return readTrajectory(path);
@@ -61,8 +66,47 @@ void writeJson(const EvalAppOptions& opt, const EvalAppResult& res) {
           << ", " << a.t.y() << ", " << a.t.z() << "]}}" << (k + 1 < res.results.size() ? "," : "")
           << "\n";
     }
-    out << "  ]\n}\n";
+    out << "  ]";
+    if (res.plane_map) {
+      const auto& m = *res.plane_map;
+      out << ",\n  \"plane_map\": {\"file\": " << jsonString(opt.planes_file)
+          << ", \"map_planes\": " << m.map_planes << ", \"true_planes\": " << m.planes.size()
+          << ", \"duplicates\": " << m.duplicates << ", \"mixed\": " << m.mixed
+          << ", \"unmatched\": " << m.unmatched << ",\n    \"planes\": [";
+      for (size_t k = 0; k < m.planes.size(); ++k) {
+        const auto& p = m.planes[k];
+        out << (k ? ",\n      " : "\n      ") << "{\"id\": " << p.true_id
+            << ", \"map_entries\": " << p.map_entries
+            << ", \"normal_error_deg\": " << p.normal_error_deg
+            << ", \"distance_error_m\": " << p.distance_error_m << ", \"seen_s\": " << p.seen_s
+            << "}";
+      }
+      out << "]}";
+    }
+    out << "\n}\n";
   });
+}
+
+std::string formatPlaneMapReport(const eval::PlaneMapAccuracy& m) {
+  std::vector<double> normal, distance;
+  for (const auto& p : m.planes)
+    normal.push_back(p.normal_error_deg), distance.push_back(p.distance_error_m);
+  const eval::ErrorStats n = eval::computeStats(normal), d = eval::computeStats(distance);
+  std::ostringstream out;
+  char line[400];
+  std::snprintf(line, sizeof(line),
+                "\nplane map: %zu entries for %zu true planes (duplicates %zu, mixed %zu, "
+                "unmatched %zu); normal error median %.2f max %.2f deg, offset error median "
+                "%.3f max %.3f m\n%6s %8s %11s %11s %8s\n",
+                m.map_planes, m.planes.size(), m.duplicates, m.mixed, m.unmatched, n.median, n.max,
+                d.median, d.max, "plane", "entries", "normal deg", "offset m", "seen s");
+  out << line;
+  for (const auto& p : m.planes) {
+    std::snprintf(line, sizeof(line), "%6d %8zu %11.2f %11.3f %8.1f\n", p.true_id, p.map_entries,
+                  p.normal_error_deg, p.distance_error_m, p.seen_s);
+    out << line;
+  }
+  return out.str();
 }
 
 }  // namespace
@@ -86,6 +130,10 @@ EvalAppResult runEvaluation(const EvalAppOptions& opt) {
     res.labels.push_back(k < opt.labels.size() ? opt.labels[k]
                                                : std::filesystem::path(file).stem().string());
   }
+  if (!opt.planes_file.empty())
+    res.plane_map =
+        eval::evaluatePlaneMap(readPlanesYaml(opt.planes_file), readPlanesYaml(opt.gt_planes_file),
+                               res.results.front().alignment);
   if (!opt.plot_png.empty()) {
     std::vector<eval::PlottedEstimate> plotted;
     for (size_t k = 0; k < res.results.size(); ++k)
@@ -120,6 +168,7 @@ std::string formatEvaluationReport(const EvalAppOptions& opt, const EvalAppResul
   }
   out << "(metres; alignment " << eval::toString(opt.eval.align) << "; RPE@dist over "
       << opt.eval.rpe_distance << " m, RPE@1fr over " << opt.eval.rpe_frames << " frame(s))\n";
+  if (res.plane_map) out << formatPlaneMapReport(*res.plane_map);
   return out.str();
 }
 
@@ -127,7 +176,7 @@ int evalMain(int argc, char** argv) {
   return runApp("rpvio-eval", kUsage, [&] {
     const CommandLine cli(argc, argv,
                           {"gt", "est", "label", "align", "max-dt", "format", "plot", "json",
-                           "rpe-distance", "rpe-frames"},
+                           "rpe-distance", "rpe-frames", "planes", "gt-planes"},
                           {});
     EvalAppOptions opt;
     opt.gt_file = cli.value("gt");
@@ -145,6 +194,10 @@ int evalMain(int argc, char** argv) {
     opt.eval.rpe_frames = static_cast<int>(cli.number("rpe-frames", 1));
     opt.plot_png = cli.valueOr("plot", "");
     opt.json_file = cli.valueOr("json", "");
+    opt.planes_file = cli.valueOr("planes", "");
+    opt.gt_planes_file = cli.valueOr("gt-planes", "");
+    if (opt.planes_file.empty() != opt.gt_planes_file.empty())
+      throw UsageError("--planes and --gt-planes go together");
     const EvalAppResult res = runEvaluation(opt);
     std::cout << formatEvaluationReport(opt, res);
     if (!opt.plot_png.empty()) std::cout << "plot: " << opt.plot_png << "\n";

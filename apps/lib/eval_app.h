@@ -1,8 +1,10 @@
 #pragma once
 // rpvio-eval: ATE/RPE of one or more estimates against ground truth, table + JSON + plot.
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "apps/evaluation/plane_map_accuracy.h"
 #include "apps/evaluation/trajectory_metrics.h"
 
 namespace rpvio::apps {
@@ -13,11 +15,15 @@ struct EvalAppOptions {
   std::string format;  // "" = detect from content
   eval::EvalOptions eval;
   std::string plot_png, json_file;
+  // Plane map (planes.yaml of rpvio-slam) against true planes (groundtruth_planes.yaml of
+  // rpvio-sim), moved by the first estimate's alignment.
+  std::string planes_file, gt_planes_file;
 };
 
 struct EvalAppResult {
   std::vector<std::string> labels;
   std::vector<eval::EvalResult> results;
+  std::optional<eval::PlaneMapAccuracy> plane_map;
 };
 
 /// Reads the files (InputError on bad content or no overlap, naming the estimate file), evaluates,

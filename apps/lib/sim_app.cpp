@@ -8,7 +8,9 @@
 #include <set>
 
 #include "apps/lib/command_line.h"
+#include "planes_map/plane_map_exporters.h"
 #include "rawlog_io/sim/sequence_writer.h"
+#include "rawlog_io/sim/simulator.h"
 
 namespace fs = std::filesystem;
 
@@ -21,7 +23,9 @@ const char* kUsage =
     "       rpvio-sim --suite [--seed S] [--duration SEC] [--config INI] --out DIR\n"
     "       rpvio-sim --preview [--characters N] [--time SEC] [--config INI] --out FILE.png\n"
     "  Writes DIR/seq.rawlog (+ seq_Images/), DIR/groundtruth.tum, DIR/groundtruth_biases.csv,\n"
-    "  DIR/calib.ini. --suite writes DIR/{static,C1,C2,C4,C6,C8}/ with the same seed. Scene and\n"
+    "  DIR/groundtruth_planes.yaml (the scene's planes, id = mask label, in the plane map's\n"
+    "  schema), DIR/calib.ini. --suite writes DIR/{static,C1,C2,C4,C6,C8}/ with the same seed. "
+    "Scene and\n"
     "  noise parameters: --config (default config/sim/warehouse.ini when present, else built-in\n"
     "  defaults, which that file documents).\n"
     "  Fault injection (off by default; times in s of the sequence, intervals START:DURATION,\n"
@@ -88,6 +92,26 @@ sim::SimConfig loadConfig(const CommandLine& cli) {
   return config;
 }
 
+/// The scene's static planes as a plane map (id and mask label = the plane's mask label, polygon
+/// = its rectangle), for evaluating estimated plane maps.
+void writeTruePlanes(const sim::SimConfig& config, const std::string& dir) {
+  std::vector<Plane> planes;
+  const sim::Simulator simulator(config);
+  for (const sim::ScenePlane& s : simulator.scene().planes()) {
+    Plane p;
+    p.id = s.id;
+    p.normal = s.normal;
+    p.distance = s.distance();
+    p.covariance.setZero();
+    const Eigen::Vector3d u = s.width * s.u_axis, v = s.height * s.v_axis;
+    p.polygon = {s.origin, s.origin + u, s.origin + u + v, s.origin + v};
+    p.mask_ids = {s.id};
+    p.last_seen = config.duration;
+    planes.push_back(p);
+  }
+  writePlanesYaml((fs::path(dir) / "groundtruth_planes.yaml").string(), planes);
+}
+
 void generate(const sim::SimConfig& config, const std::string& dir) {
   const bool terminal = isatty(STDERR_FILENO);
   const auto start = std::chrono::steady_clock::now();
@@ -99,6 +123,7 @@ void generate(const sim::SimConfig& config, const std::string& dir) {
                  total, done / elapsed, (total - done) * elapsed / done);
   });
   if (terminal) std::fprintf(stderr, "\n");
+  writeTruePlanes(config, dir);
   const double elapsed =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::printf(

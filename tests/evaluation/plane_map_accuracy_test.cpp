@@ -1,0 +1,113 @@
+// Plane map against true planes (issue 8's measure): matching by mask label, the alignment's effect
+// on (n, d), duplicates, wrong merges; and rpvio-eval --planes on a simulated scene's true planes.
+#include <gtest/gtest.h>
+
+#include "apps/evaluation/plane_map_accuracy.h"
+#include "planes_map/plane_map_exporters.h"
+#include "tests/test_util.h"
+
+namespace rpvio {
+namespace {
+
+Plane plane(int id, const Eigen::Vector3d& n, double d, std::set<int> masks,
+            size_t observations = 1) {
+  Plane p;
+  p.id = id;
+  p.normal = n.normalized();
+  p.distance = d;
+  p.mask_ids = std::move(masks);
+  p.observations = observations;
+  return p;
+}
+
+TEST(PlaneMapAccuracy, ExactMapInAnotherFrameHasNoError) {
+  const std::vector<Plane> truth = {plane(1, {0, 0, 1}, 0, {1}), plane(2, {-1, 0, 0}, -20, {2}),
+                                    plane(10, {0, 1, 1}, 3, {10})};
+  // The estimate's world: X_est = R_e X_gt + t_e, so X_gt = R_eᵀ (X_est − t_e).
+  const Eigen::Matrix3d R_e =
+      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).matrix();
+  const Eigen::Vector3d t_e(4, -2, 1);
+  std::vector<Plane> map;
+  for (const Plane& p : truth) {
+    const Eigen::Vector3d n = R_e * p.normal;
+    map.push_back(plane(p.id + 100, n, p.distance + n.dot(t_e), p.mask_ids));
+  }
+  eval::Similarity est_to_gt;
+  est_to_gt.R = R_e.transpose();
+  est_to_gt.t = -R_e.transpose() * t_e;
+  const auto a = eval::evaluatePlaneMap(map, truth, est_to_gt);
+  ASSERT_EQ(a.planes.size(), 3u);
+  EXPECT_EQ(a.duplicates, 0u);
+  EXPECT_EQ(a.mixed, 0u);
+  EXPECT_EQ(a.unmatched, 0u);
+  for (const auto& p : a.planes) {
+    EXPECT_EQ(p.map_entries, 1u);
+    EXPECT_LT(p.normal_error_deg, 1e-6);
+    EXPECT_LT(p.distance_error_m, 1e-9);
+  }
+}
+
+TEST(PlaneMapAccuracy, CountsDuplicatesMergesAndMeasuresTheMostObservedEntry) {
+  const std::vector<Plane> truth = {plane(1, {0, 0, 1}, 0, {1}), plane(2, {1, 0, 0}, 5, {2})};
+  const double tilt = 3 * M_PI / 180;
+  const std::vector<Plane> map = {
+      plane(1, {0, std::sin(tilt), std::cos(tilt)}, 0.1, {1}, 40),  // floor: 3°, 10 cm off
+      plane(2, {0, 0, 1}, 0.5, {1}, 2),                             // its duplicate
+      plane(3, {-1, 0, 0}, -5.02, {2, 1}),  // opposite sign convention; also seen as the floor
+      plane(4, {0, 1, 0}, 1, {77})};        // a label that is no true plane
+  const auto a = eval::evaluatePlaneMap(map, truth, eval::Similarity{});
+  ASSERT_EQ(a.planes.size(), 2u);
+  EXPECT_EQ(a.map_planes, 4u);
+  EXPECT_EQ(a.planes[0].map_entries, 3u);  // floor: 1, 2 and the mixed 3
+  EXPECT_NEAR(a.planes[0].normal_error_deg, 3, 1e-9);
+  EXPECT_NEAR(a.planes[0].distance_error_m, 0.1, 1e-12);
+  EXPECT_EQ(a.planes[1].map_entries, 1u);
+  EXPECT_NEAR(a.planes[1].normal_error_deg, 0, 1e-9);
+  EXPECT_NEAR(a.planes[1].distance_error_m, 0.02, 1e-9);
+  EXPECT_EQ(a.duplicates, 2u);
+  EXPECT_EQ(a.mixed, 1u);
+  EXPECT_EQ(a.unmatched, 1u);
+}
+
+TEST(PlaneMapAccuracy, EvalAppReadsTheSimulatorsTruePlanes) {
+  test::TempDir dir;
+  std::string out;
+  ASSERT_EQ(test::runCommand(test::binDir() + "/rpvio-sim --characters 0 --duration 0.3 --out " +
+                                 dir.file("seq"),
+                             out),
+            0)
+      << out;
+  const auto truth = readPlanesYaml(dir.file("seq/groundtruth_planes.yaml"));
+  ASSERT_GT(truth.size(), 10u);
+  EXPECT_EQ(truth.front().id, 1);  // the floor: z = 0, normal up
+  EXPECT_NEAR(truth.front().normal.z(), 1, 1e-12);
+  EXPECT_NEAR(truth.front().distance, 0, 1e-12);
+  // A map that is the truth itself, with a duplicated floor, evaluated against the ground truth
+  // trajectory (identity alignment).
+  std::vector<Plane> map = truth;
+  map.push_back(truth.front());
+  map.back().id = 999;
+  writePlanesYaml(dir.file("map.yaml"), map);
+  const std::string gt = dir.file("seq/groundtruth.tum");
+  ASSERT_EQ(test::runCommand(test::binDir() + "/rpvio-eval --gt " + gt + " --est " + gt +
+                                 " --planes " + dir.file("map.yaml") + " --gt-planes " +
+                                 dir.file("seq/groundtruth_planes.yaml") + " --json " +
+                                 dir.file("r.json"),
+                             out),
+            0)
+      << out;
+  EXPECT_NE(out.find("plane map: " + std::to_string(truth.size() + 1) + " entries for " +
+                     std::to_string(truth.size()) + " true planes (duplicates 1, mixed 0"),
+            std::string::npos)
+      << out;
+  const std::string json = test::readFile(dir.file("r.json"));
+  EXPECT_EQ(test::jsonNumber(json, "duplicates"), 1) << json;
+  EXPECT_EQ(test::runCommand(test::binDir() + "/rpvio-eval --gt " + gt + " --est " + gt +
+                                 " --planes " + dir.file("map.yaml"),
+                             out),
+            2)
+      << out;
+}
+
+}  // namespace
+}  // namespace rpvio
