@@ -23,6 +23,9 @@ PlanesMapOptions PlanesMapOptions::load(const IniFile& ini, const std::string& s
   o.max_normal_angle_deg = ini.numberOr(s, "max_normal_angle_deg", o.max_normal_angle_deg);
   o.max_distance_m = ini.numberOr(s, "max_distance_m", o.max_distance_m);
   o.max_gap_m = ini.numberOr(s, "max_gap_m", o.max_gap_m);
+  o.max_label_normal_angle_deg =
+      ini.numberOr(s, "max_label_normal_angle_deg", o.max_label_normal_angle_deg);
+  o.max_label_distance_m = ini.numberOr(s, "max_label_distance_m", o.max_label_distance_m);
   o.voxel_size_m = ini.numberOr(s, "voxel_size_m", o.voxel_size_m);
   o.max_support_points = static_cast<size_t>(
       ini.numberOr(s, "max_support_points", static_cast<double>(o.max_support_points)));
@@ -33,15 +36,18 @@ std::string PlanesMapOptions::describe() const {
   std::ostringstream out;
   out << "[PlanesMap] max_normal_angle_deg=" << max_normal_angle_deg
       << " max_distance_m=" << max_distance_m << " max_gap_m=" << max_gap_m
-      << " voxel_size_m=" << voxel_size_m << " max_support_points=" << max_support_points;
+      << " max_label_normal_angle_deg=" << max_label_normal_angle_deg
+      << " max_label_distance_m=" << max_label_distance_m << " voxel_size_m=" << voxel_size_m
+      << " max_support_points=" << max_support_points;
   return out.str();
 }
 
 bool PlanesMap::compatible(const Plane& plane, const Eigen::Vector3d& n, double d,
                            const std::vector<Eigen::Vector3d>& points, bool same_label) const {
   const double angle = std::acos(std::clamp(plane.normal.dot(n), -1.0, 1.0)) * 180 / M_PI;
-  if (angle > options_.max_normal_angle_deg ||
-      std::abs(plane.distance - d) > options_.max_distance_m)
+  if (angle > (same_label ? options_.max_label_normal_angle_deg : options_.max_normal_angle_deg) ||
+      std::abs(plane.distance - d) >
+          (same_label ? options_.max_label_distance_m : options_.max_distance_m))
     return false;
   if (same_label || points.empty() || plane.support.empty()) return true;
   return gapBetween(plane.support, points) <= options_.max_gap_m;

@@ -14,7 +14,11 @@ struct PlanesMapOptions {
   double max_normal_angle_deg = 8.0;  // association: normals closer than this ...
   double max_distance_m = 0.25;       // ... plane offsets closer than this ...
   double max_gap_m = 1.0;             // ... and supports closer than this (no far-apart twins)
-  double voxel_size_m = 0.10;         // support decimation
+  // Seen again under the mask label it was last seen as: the label is evidence of its own, the
+  // geometry only has to be plausible (a far wall's offset drifts by decimetres between windows).
+  double max_label_normal_angle_deg = 20.0;
+  double max_label_distance_m = 1.0;
+  double voxel_size_m = 0.10;  // support decimation
   size_t max_support_points = 3000;
 
   /// Reads the keys present in `section`; InputError (file, line) on a bad value.
@@ -49,8 +53,8 @@ class PlanesMap {
   const PlanesMapOptions& options() const { return options_; }
 
  private:
-  /// Same orientation and offset; and, unless `same_label`, supports no farther apart than
-  /// max_gap_m (one mask label is one surface within the estimator's window).
+  /// Same orientation and offset (the label thresholds when `same_label`); and, unless
+  /// `same_label`, supports no farther apart than max_gap_m.
   bool compatible(const Plane& plane, const Eigen::Vector3d& n, double d,
                   const std::vector<Eigen::Vector3d>& points, bool same_label = false) const;
   void fuse(Plane& plane, const PlaneObservation& observation) const;

@@ -82,6 +82,30 @@ TEST(PlanesMap, TwoLapsGiveEveryPlaneOnceAndAccurately) {
   EXPECT_LT(worst_distance, 0.05);
 }
 
+TEST(PlanesMap, SameLabelSeenAgainWithDriftKeepsItsEntry) {
+  PlanesMap map;
+  PlaneObservation first;
+  first.mask_id = 3;
+  first.normal = -Eigen::Vector3d::UnitX();
+  first.distance = 20.0;
+  for (int k = 0; k < 10; ++k) first.points.emplace_back(-20.0, k * 0.3, 1.0);
+  const int id = map.update(first);
+  // A lap later the window's estimate of the far wall has drifted by 0.6 m and 10 deg: under its
+  // label it is the same entry; under an unknown label the geometric thresholds (8 deg, 0.25 m)
+  // apply and it is a new one.
+  PlaneObservation again = first;
+  again.normal = Eigen::Vector3d(-std::cos(0.1745), std::sin(0.1745), 0);
+  again.distance = 20.6;
+  again.mask_id = 4;
+  EXPECT_NE(map.update(again), id);
+  again.mask_id = 3;
+  EXPECT_EQ(map.update(again), id);
+  // Beyond the label's thresholds (1 m) the label does not hold either.
+  PlaneObservation moved = first;
+  moved.distance = 21.5;
+  EXPECT_NE(map.update(moved), id);
+}
+
 TEST(PlanesMap, ParallelPlanesOneMetreApartStaySeparate) {
   PlanesMap map;
   PlaneObservation a;
