@@ -138,6 +138,8 @@ class SlidingWindowEstimator {
   /// Moves a re-initialized window (and its planes) into the world of the last good state by the
   /// yaw and translation that put its first keyframe on the IMU's dead reckoning.
   void reconnect();
+  /// Whether samples (covering [t0, t1]) step by more than max_imu_step_s somewhere.
+  bool imuGap(const std::vector<ImuSample>& samples, double t0, double t1) const;
   /// From t0 to t1, linearized at the biases of `speed_bias`; noise: the window's by default.
   std::shared_ptr<ImuPreintegration> preintegrate(const std::vector<ImuSample>& samples, double t0,
                                                   double t1, const double* speed_bias,

@@ -5,10 +5,9 @@
 //  - kResets (long faults): a reset with its cause is reported. Issue 10 also asks that tracking
 //    resume within 5 s: NOT reached yet (the mid-flight re-initialization waits for IMU
 //    excitation); the first pose after the fault is printed.
-//  - kDegrades: the run finishes cleanly; the accuracy is printed. Not reached yet: an IMU gap of
-//    0.2 s ends in a reset (implausible accelerometer bias); with an unknown 30 ms camera-IMU
-//    offset rpvio-single does not initialize in 16 s (no online time-offset estimation; with the
-//    essential-matrix fallback tried at once it does, at 3x the fault-free ATE).
+//  - kDegrades: the run finishes cleanly; the accuracy is printed. Not reached yet: with an
+//    unknown 30 ms camera-IMU offset rpvio-single initializes (essential-matrix fallback) but ends
+//    at 0.47 m, 3.7x the fault-free ATE (no online time-offset estimation).
 #include <gtest/gtest.h>
 #include <sys/file.h>
 
@@ -121,7 +120,7 @@ INSTANTIATE_TEST_SUITE_P(
                       Fault{"motion_blur", "--blur 7:0.5", 7.5, Expect::kContinues},
                       Fault{"blackout", "--blackout 7:2", 9, Expect::kResets},
                       Fault{"no_planes", "--no-planes 7:2", 9, Expect::kResets},
-                      Fault{"imu_gap", "--imu-gap 7:0.2", 7.2, Expect::kDegrades},
+                      Fault{"imu_gap", "--imu-gap 7:0.2", 7.2, Expect::kContinues},
                       Fault{"time_offset", "--time-offset 0.03", 0, Expect::kDegrades},
                       Fault{"imu_saturation", "--gyro-saturation 0.15 --accel-saturation 12", 0,
                             Expect::kContinues}),
