@@ -61,7 +61,8 @@ struct EstimatorOptions {
   double max_jump_m = 5.0;      // optimized newest pose vs its IMU prediction
   double max_jump_deg = 50.0;
   size_t min_features = 4;     // features in use in the newest frame ...
-  double max_blind_s = 1.0;    // ... not reached for this long
+  double max_blind_s = 2.5;    // ... not reached for this long (IMU only meanwhile: a 2 s
+                               // blackout is bridged at 1.2x the fault-free ATE)
   double virtual_focal = 460;  // px; parallax thresholds and factor weights refer to it
   // Re-initialization after a reset: mid-flight accelerations make the scale less observable
   // than the take-off, so the alignment's scale may be this uncertain (the window refines it) ...

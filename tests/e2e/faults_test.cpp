@@ -1,10 +1,10 @@
 // Faults (issue 10), end to end: rpvio-sim writes a 16 s C2 sequence with one fault at t = 7 s,
 // rpvio-slam (rpvio-single) runs on it. Every run must finish with exit 0, parseable outputs and
 // no NaN, and still be tracking at the end or say why not (a reset with its cause).
-//  - kContinues (short faults): no reset, ATE within 2x of the fault-free run.
-//  - kResets (long faults): a reset with its cause is reported. Issue 10 also asks that tracking
-//    resume within 5 s: NOT reached yet (the mid-flight re-initialization waits for IMU
-//    excitation); the first pose after the fault is printed.
+//  - kContinues (short faults): no reset, ATE within 2x of the fault-free run. A 2 s blackout or
+//    stretch without planes is one: the IMU alone carries the state for up to max_blind_s (2.5 s).
+//  - kResets (long faults, 4 s without features): a reset with its cause is reported and
+//    tracking resumes (re-initialization) within 5 s of the fault's end.
 //  - kDegrades: the run finishes cleanly; the accuracy is printed. Not reached yet: with an
 //    unknown 30 ms camera-IMU offset rpvio-single initializes (essential-matrix fallback) but ends
 //    at 0.47 m, 3.7x the fault-free ATE (no online time-offset estimation).
@@ -111,6 +111,8 @@ TEST_P(FaultRun, KeepsWorkingAndSaysWhatHappened) {
     }
   std::printf("%s: first pose after the fault's end: %s\n", f.name,
               resumed < 0 ? "none (not re-initialized)" : std::to_string(resumed).c_str());
+  EXPECT_GE(resumed, f.end_s) << "re-initialized after the fault";
+  EXPECT_LE(resumed, f.end_s + 5.0) << "re-initialized within 5 s";
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -118,8 +120,10 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(Fault{"dropped_frame", "--drop-frame 7", 7, Expect::kContinues},
                       Fault{"dropped_second", "--drop-frames 7:1", 8, Expect::kContinues},
                       Fault{"motion_blur", "--blur 7:0.5", 7.5, Expect::kContinues},
-                      Fault{"blackout", "--blackout 7:2", 9, Expect::kResets},
-                      Fault{"no_planes", "--no-planes 7:2", 9, Expect::kResets},
+                      Fault{"blackout", "--blackout 7:2", 9, Expect::kContinues},
+                      Fault{"no_planes", "--no-planes 7:2", 9, Expect::kContinues},
+                      Fault{"long_blackout", "--blackout 7:4", 11, Expect::kResets},
+                      Fault{"long_no_planes", "--no-planes 7:4", 11, Expect::kResets},
                       Fault{"imu_gap", "--imu-gap 7:0.2", 7.2, Expect::kContinues},
                       Fault{"time_offset", "--time-offset 0.03", 0, Expect::kDegrades},
                       Fault{"imu_saturation", "--gyro-saturation 0.15 --accel-saturation 12", 0,
