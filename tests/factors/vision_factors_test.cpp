@@ -8,7 +8,6 @@
 #include "mrpt_modules/factors/homography_factor.h"
 #include "mrpt_modules/factors/pose_manifold.h"
 #include "mrpt_modules/factors/reprojection_factor.h"
-#include "mrpt_modules/factors/time_offset_reprojection_factor.h"
 #include "rawlog_io/sim/simulator.h"
 #include "tests/factors/jacobian_check.h"
 
@@ -49,39 +48,6 @@ TEST(ReprojectionFactor, ZeroOnTruthAndJacobiansMatchNumeric) {
   const PoseManifold pm;
   const double worst = test::worstJacobianError(*f, x, {&pm, &pm, &pm, nullptr});
   std::printf("reprojection factor: worst Jacobian error %.2e\n", worst);
-  EXPECT_LT(worst, 1e-6);
-}
-
-TEST(TimeOffsetReprojectionFactor, RemovesTheOffsetAndJacobiansMatchNumeric) {
-  TwoViews v;
-  const double td = 0.03;  // images stamped t were taken at IMU time t + td
-  const Eigen::Vector3d X = v.sim.castPixel(v.ti, 500.0, 300.0).point;
-  const double depth = (v.sim.cameraPose(v.ti).inverse() * X).z();
-  auto velocity = [&](double t) {  // image velocity (normalized / s), central difference
-    return Eigen::Vector2d((v.normalized(t + 1e-4, X) - v.normalized(t - 1e-4, X)) / 2e-4);
-  };
-  const Eigen::Vector2d u_i = v.normalized(v.ti + td, X), u_j = v.normalized(v.tj + td, X);
-  std::unique_ptr<ceres::CostFunction> f(TimeOffsetReprojectionResidual::create(
-      u_i, velocity(v.ti + td), u_j, velocity(v.tj + td), 320 / 1.5));
-  std::vector<std::vector<double>> x = {v.pose_i, v.pose_j, v.mount, {1.0 / depth}, {td}};
-  auto residualNorm = [&] {
-    double r[2];
-    std::vector<const double*> p = {x[0].data(), x[1].data(), x[2].data(), x[3].data(),
-                                    x[4].data()};
-    f->Evaluate(p.data(), r, nullptr);
-    return std::hypot(r[0], r[1]);
-  };
-  const double at_truth = residualNorm();
-  x[4][0] = 0;
-  const double ignored = residualNorm();
-  std::printf("time-offset reprojection: residual %.2e with td, %.2e without\n", at_truth, ignored);
-  EXPECT_GT(ignored, 0.05);           // 30 ms of image motion is visible ...
-  EXPECT_LT(at_truth, ignored / 50);  // ... and the first-order correction removes it
-  x[3][0] *= 1.3;
-  x[4][0] = 0.01;
-  const PoseManifold pm;
-  const double worst = test::worstJacobianError(*f, x, {&pm, &pm, &pm, nullptr, nullptr});
-  std::printf("time-offset reprojection factor: worst Jacobian error %.2e\n", worst);
   EXPECT_LT(worst, 1e-6);
 }
 
