@@ -13,7 +13,7 @@
 // an image error, so they get the same unit and the same robust-loss scale.
 // Blocks: pose_i [7], pose_j [7], T_BC [7] (may be held constant), plane normal [3] (unit,
 // ceres::SphereManifold<3>), plane distance [1]. Residual: 2.
-#include <ceres/cost_function.h>
+#include <ceres/sized_cost_function.h>
 #include <Eigen/Core>
 
 #include "mrpt_modules/factors/camera_geometry.h"
@@ -35,28 +35,25 @@ Eigen::Matrix<T, 3, 3> planeInducedHomography(const RigidTransform<T>& W_ci,
   return cj_ci.R + cj_ci.t * n_ci.transpose() / d_ci;
 }
 
-struct HomographyResidual {
+/// The residual is the reprojection (reprojection_factor.h) of the point where the ray of u_i meets
+/// the plane — X_ci = ū_i / ρ with ρ = (n_ci·ū_i) / d_ci, since H_ji ū_i = ρ X_cj — so its
+/// Jacobians are the reprojection factor's, plus its inverse-depth column times ∂ρ/∂(pose_i,
+/// T_BC, n_w, d_w) (analytic; ambient Jacobians for the normal).
+class HomographyResidual : public ceres::SizedCostFunction<2, 7, 7, 7, 3, 1> {
+ public:
   HomographyResidual(const Eigen::Vector2d& u_i, const Eigen::Vector2d& u_j, double sqrt_info)
-      : u_i(u_i), u_j(u_j), sqrt_info(sqrt_info) {}
-
-  template <typename T>
-  bool operator()(const T* pose_i, const T* pose_j, const T* T_BC, const T* normal_w,
-                  const T* distance_w, T* residual) const {
-    const Eigen::Matrix<T, 3, 3> H = planeInducedHomography(
-        cameraInWorld(pose_i, T_BC), cameraInWorld(pose_j, T_BC),
-        Eigen::Matrix<T, 3, 1>(normal_w[0], normal_w[1], normal_w[2]), distance_w[0]);
-    const Eigen::Matrix<T, 3, 1> x = H * Eigen::Matrix<T, 3, 1>(T(u_i.x()), T(u_i.y()), T(1));
-    residual[0] = T(sqrt_info) * (x.x() / x.z() - T(u_j.x()));
-    residual[1] = T(sqrt_info) * (x.y() / x.z() - T(u_j.y()));
-    return true;
-  }
-
-  /// Autodiff cost function (2 residuals; blocks 7, 7, 7, 3, 1); the caller owns it.
+      : u_i_(u_i), u_j_(u_j), sqrt_info_(sqrt_info) {}
+  /// The caller owns it.
   static ceres::CostFunction* create(const Eigen::Vector2d& u_i, const Eigen::Vector2d& u_j,
-                                     double sqrt_info);
+                                     double sqrt_info) {
+    return new HomographyResidual(u_i, u_j, sqrt_info);
+  }
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override;
 
-  Eigen::Vector2d u_i, u_j;
-  double sqrt_info;
+ private:
+  Eigen::Vector2d u_i_, u_j_;
+  double sqrt_info_;
 };
 
 }  // namespace rpvio
