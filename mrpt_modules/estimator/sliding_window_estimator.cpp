@@ -73,12 +73,25 @@ SlidingWindowEstimator::SlidingWindowEstimator(const Calibration& calibration,
   std::copy(m, m + 7, mount_);
 }
 
-bool SlidingWindowEstimator::imuGap(const std::vector<ImuSample>& samples, double t0,
-                                    double t1) const {
+SlidingWindowEstimator::ImuDefects SlidingWindowEstimator::imuDefects(
+    const std::vector<ImuSample>& samples, double t0, double t1) const {
+  ImuDefects d;
   double longest_step = t1 - samples.back().t;
   for (size_t k = 1; k < samples.size(); ++k)
     longest_step = std::max(longest_step, samples[k].t - std::max(t0, samples[k - 1].t));
-  return longest_step > options_.max_imu_step_s;
+  d.gap = longest_step > options_.max_imu_step_s;
+  // A saturated axis repeats its limit exactly; noise never repeats a value three times.
+  auto stuck = [&](size_t k, const Eigen::Vector3d ImuSample::*sensor, int axis, double floor) {
+    const double v = (samples[k].*sensor)[axis];
+    return std::abs(v) >= floor && v == (samples[k - 1].*sensor)[axis] &&
+           v == (samples[k - 2].*sensor)[axis];
+  };
+  for (size_t k = 2; k < samples.size(); ++k)
+    for (int axis = 0; axis < 3; ++axis) {
+      d.accel_saturated |= stuck(k, &ImuSample::accel, axis, options_.min_saturated_accel);
+      d.gyro_saturated |= stuck(k, &ImuSample::gyro, axis, options_.min_saturated_gyro);
+    }
+  return d;
 }
 
 std::shared_ptr<ImuPreintegration> SlidingWindowEstimator::preintegrate(
@@ -93,12 +106,15 @@ std::shared_ptr<ImuPreintegration> SlidingWindowEstimator::preintegrate(
     first.accel = (1 - a) * first.accel + a * samples[1].accel;
     first.gyro = (1 - a) * first.gyro + a * samples[1].gyro;
   }
-  // An IMU gap (samples missing, the last one held over it): the held value is a guess, so the
-  // factor's noise is inflated and the cameras carry the motion.
+  // An IMU gap (samples missing, the last one held over it) or a saturated sensor: the values are
+  // guesses, so the factor's noise is inflated (the sensor's, both over a gap) and the cameras
+  // carry the motion.
   ImuNoise n = noise ? *noise : window_imu_noise_;
-  if (imuGap(samples, t0, t1))
-    for (double* density : {&n.accel_noise_density, &n.gyro_noise_density})
-      *density *= options_.imu_gap_noise_inflation;
+  const ImuDefects defects = imuDefects(samples, t0, t1);
+  if (defects.gap || defects.accel_saturated)
+    n.accel_noise_density *= options_.imu_gap_noise_inflation;
+  if (defects.gap || defects.gyro_saturated)
+    n.gyro_noise_density *= options_.imu_gap_noise_inflation;
   auto pre = std::make_shared<ImuPreintegration>(
       first.accel, first.gyro, Eigen::Vector3d(speed_bias + 3), Eigen::Vector3d(speed_bias + 6), n);
   double t = t0;
@@ -300,10 +316,10 @@ void SlidingWindowEstimator::marginalizeOldest() {
     marginalizer.addFactor(std::make_unique<MarginalizationFactor>(prior_), nullptr,
                            prior_->blocks);
   const Eigen::Vector3d g(0, 0, -calib_.imu.gravity);
-  // An IMU factor over a gap is left out of the prior: its model error (the held samples), frozen
-  // by the linearization, pulled the accelerometer bias away within a second (the simulated
-  // 0.2 s gap ended in a reset).
-  if (!imuGap(next.imu, oldest.features.t, next.features.t))
+  // An IMU factor over a gap or saturated samples is left out of the prior: its model error,
+  // frozen by the linearization, pulled the accelerometer bias away within a second (the
+  // simulated 0.2 s gap ended in a reset).
+  if (!imuDefects(next.imu, oldest.features.t, next.features.t).any())
     marginalizer.addFactor(std::make_unique<ImuFactor>(next.imu_from_previous, g), nullptr,
                            {oldest.pose, oldest.speed_bias, next.pose, next.speed_bias});
   std::set<const double*> remove = {oldest.pose, oldest.speed_bias};

@@ -49,9 +49,13 @@ struct EstimatorOptions {
   // 20 s at 3 with pixel_sigma 0.5.)
   double imu_noise_inflation = 3;
   // IMU gaps: a step between samples longer than this (s) makes the interval's IMU factor this
-  // many times noisier (white-noise densities).
+  // many times noisier (white-noise densities) and keeps it out of the marginalization prior; so
+  // does a saturated sensor (for its own noise): an axis with the same value, at least this large,
+  // on three consecutive samples.
   double max_imu_step_s = 0.05;
   double imu_gap_noise_inflation = 30;
+  double min_saturated_accel = 11.8;  // m/s² (1.2 g: never a quantized value at rest)
+  double min_saturated_gyro = 0.1;    // rad/s
   int max_iterations = 8;
   double max_solver_time_s = 0;  // 0: no time budget (a budget makes runs machine-dependent)
   double min_triangulation_angle_deg = 1.0;
@@ -139,8 +143,13 @@ class SlidingWindowEstimator {
   /// Moves a re-initialized window (and its planes) into the world of the last good state by the
   /// yaw and translation that put its first keyframe on the IMU's dead reckoning.
   void reconnect();
-  /// Whether samples (covering [t0, t1]) step by more than max_imu_step_s somewhere.
-  bool imuGap(const std::vector<ImuSample>& samples, double t0, double t1) const;
+  struct ImuDefects {
+    bool gap = false;  // a step longer than max_imu_step_s
+    bool accel_saturated = false, gyro_saturated = false;
+    bool any() const { return gap || accel_saturated || gyro_saturated; }
+  };
+  /// What is wrong with samples covering [t0, t1], if anything.
+  ImuDefects imuDefects(const std::vector<ImuSample>& samples, double t0, double t1) const;
   /// From t0 to t1, linearized at the biases of `speed_bias`; noise: the window's by default.
   std::shared_ptr<ImuPreintegration> preintegrate(const std::vector<ImuSample>& samples, double t0,
                                                   double t1, const double* speed_bias,
