@@ -76,6 +76,8 @@ SlidingWindowEstimator::SlidingWindowEstimator(const Calibration& calibration,
 SlidingWindowEstimator::ImuDefects SlidingWindowEstimator::imuDefects(
     const std::vector<ImuSample>& samples, double t0, double t1) const {
   ImuDefects d;
+  d.gap = samples.empty();
+  if (d.gap) return d;
   double longest_step = t1 - samples.back().t;
   for (size_t k = 1; k < samples.size(); ++k)
     longest_step = std::max(longest_step, samples[k].t - std::max(t0, samples[k - 1].t));
