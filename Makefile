@@ -2,6 +2,7 @@
 BUILD_DIR ?= build
 JOBS ?= 2
 FUZZ_SECONDS ?= 60
+ASAN_CTEST_ARGS ?=
 
 .PHONY: deps build test demo test-asan fuzz format clean
 
@@ -21,7 +22,7 @@ demo: build
 test-asan: deps
 	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRPVIO_SANITIZE=ON
 	cmake --build build-asan -j$(JOBS)
-	cd build-asan && ctest --output-on-failure -j$(JOBS)
+	cd build-asan && ctest --output-on-failure -j$(JOBS) $(ASAN_CTEST_ARGS)
 
 # libFuzzer targets of tests/fuzz (clang), FUZZ_SECONDS each, one after the other, in build-fuzz.
 fuzz:
