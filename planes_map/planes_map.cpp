@@ -44,11 +44,11 @@ std::string PlanesMapOptions::describe() const {
 
 bool PlanesMap::compatible(const Plane& plane, const Eigen::Vector3d& n, double d,
                            const std::vector<Eigen::Vector3d>& points, bool same_label) const {
+  const double max_angle =
+      same_label ? options_.max_label_normal_angle_deg : options_.max_normal_angle_deg;
+  const double max_distance = same_label ? options_.max_label_distance_m : options_.max_distance_m;
   const double angle = std::acos(std::clamp(plane.normal.dot(n), -1.0, 1.0)) * 180 / M_PI;
-  if (angle > (same_label ? options_.max_label_normal_angle_deg : options_.max_normal_angle_deg) ||
-      std::abs(plane.distance - d) >
-          (same_label ? options_.max_label_distance_m : options_.max_distance_m))
-    return false;
+  if (angle > max_angle || std::abs(plane.distance - d) > max_distance) return false;
   if (same_label || points.empty() || plane.support.empty()) return true;
   return gapBetween(plane.support, points) <= options_.max_gap_m;
 }

@@ -4,7 +4,6 @@
 
 #include "mrpt_modules/core/parameter_blocks.h"
 #include "mrpt_modules/factors/pose_manifold.h"
-#include "mrpt_modules/factors/reprojection_factor.h"
 #include "mrpt_modules/imu/so3.h"
 
 namespace rpvio {
@@ -25,14 +24,13 @@ bool HomographyResidual::Evaluate(double const* const* x, double* residuals,
   if (a == 0 || b == 0) return false;  // ray parallel to the plane, or camera on it
   const double rho = a / b;
 
-  const ReprojectionResidual reprojection(u_i_, u_j_, sqrt_info_);
   const double* reprojection_blocks[4] = {x[0], x[1], x[2], &rho};
   Eigen::Vector2d d_rho;  // ∂r/∂ρ
   double* reprojection_jacobians[4] = {nullptr, nullptr, nullptr, d_rho.data()};
   if (jacobians)
     for (int k = 0; k < 3; ++k) reprojection_jacobians[k] = jacobians[k];
-  if (!reprojection.Evaluate(reprojection_blocks, residuals,
-                             jacobians ? reprojection_jacobians : nullptr))
+  if (!reprojection_.Evaluate(reprojection_blocks, residuals,
+                              jacobians ? reprojection_jacobians : nullptr))
     return false;
   if (!jacobians) return true;
 

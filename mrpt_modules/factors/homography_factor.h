@@ -17,6 +17,7 @@
 #include <Eigen/Core>
 
 #include "mrpt_modules/factors/camera_geometry.h"
+#include "mrpt_modules/factors/reprojection_factor.h"
 
 namespace rpvio {
 
@@ -42,7 +43,7 @@ Eigen::Matrix<T, 3, 3> planeInducedHomography(const RigidTransform<T>& W_ci,
 class HomographyResidual : public ceres::SizedCostFunction<2, 7, 7, 7, 3, 1> {
  public:
   HomographyResidual(const Eigen::Vector2d& u_i, const Eigen::Vector2d& u_j, double sqrt_info)
-      : u_i_(u_i), u_j_(u_j), sqrt_info_(sqrt_info) {}
+      : u_i_(u_i), reprojection_(u_i, u_j, sqrt_info) {}
   /// The caller owns it.
   static ceres::CostFunction* create(const Eigen::Vector2d& u_i, const Eigen::Vector2d& u_j,
                                      double sqrt_info) {
@@ -52,8 +53,8 @@ class HomographyResidual : public ceres::SizedCostFunction<2, 7, 7, 7, 3, 1> {
                 double** jacobians) const override;
 
  private:
-  Eigen::Vector2d u_i_, u_j_;
-  double sqrt_info_;
+  Eigen::Vector2d u_i_;
+  ReprojectionResidual reprojection_;  // evaluated at the plane's inverse depth
 };
 
 }  // namespace rpvio
