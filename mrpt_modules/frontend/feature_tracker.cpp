@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <map>
+#include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
 #include <unordered_map>
@@ -9,6 +10,9 @@
 #include "mrpt_modules/frontend/point_undistortion.h"
 
 namespace rpvio {
+namespace {
+const size_t kMinHomographyFeatures = 8;
+}  // namespace
 
 TrackerOptions TrackerOptions::load(const IniFile& ini, const std::string& s) {
   TrackerOptions o;
@@ -25,6 +29,7 @@ TrackerOptions TrackerOptions::load(const IniFile& ini, const std::string& s) {
   o.klt_min_eigenvalue = ini.numberOr(s, "klt_min_eigenvalue", o.klt_min_eigenvalue);
   o.clahe = ini.flagOr(s, "clahe", o.clahe);
   o.anchor_refinement = ini.flagOr(s, "anchor_refinement", o.anchor_refinement);
+  o.max_warp_scale = ini.numberOr(s, "max_warp_scale", o.max_warp_scale);
   o.ransac.threshold_px = ini.numberOr(s, "ransac_threshold_px", o.ransac.threshold_px);
   o.ransac.virtual_focal = ini.numberOr(s, "virtual_focal", o.ransac.virtual_focal);
   return o;
@@ -32,6 +37,14 @@ TrackerOptions TrackerOptions::load(const IniFile& ini, const std::string& s) {
 
 FeatureTracker::FeatureTracker(const CameraIntrinsics& camera, const TrackerOptions& options)
     : camera_(camera), options_(options) {}
+
+void FeatureTracker::undistort(std::vector<Track>& tracks) const {
+  if (tracks.empty()) return;
+  std::vector<cv::Point2f> pixels;
+  for (const Track& tr : tracks) pixels.push_back(tr.pixel);
+  const auto normalized = undistortToNormalized(pixels, camera_);
+  for (size_t i = 0; i < tracks.size(); ++i) tracks[i].normalized = normalized[i];
+}
 
 void FeatureTracker::warnOnce(const std::string& message) {
   if (std::find(warned_.begin(), warned_.end(), message) != warned_.end()) return;
@@ -71,6 +84,7 @@ std::vector<FeatureTracker::Track> FeatureTracker::propagate(const cv::Mat& imag
       if (mask.at<uint8_t>(at) != tracks_[i].plane_id || !trackable_.at<uint8_t>(at)) continue;
     }
     Track tr = tracks_[i];
+    tr.from = tr.pixel;
     tr.pixel = to[i];
     ++tr.length;
     kept.push_back(tr);
@@ -78,43 +92,32 @@ std::vector<FeatureTracker::Track> FeatureTracker::propagate(const cv::Mat& imag
   return kept;
 }
 
-void FeatureTracker::refineAgainstAnchors(std::vector<Track>& tracks) const {
-  // One KLT call per birth image, at the two finest levels, starting from the frame-to-frame
-  // result.
-  std::map<const std::vector<cv::Mat>*, std::vector<size_t>> by_anchor;
-  for (size_t i = 0; i < tracks.size(); ++i)
-    if (tracks[i].anchor) by_anchor[tracks[i].anchor.get()].push_back(i);
-  const cv::Size window(options_.klt_window, options_.klt_window);
-  const cv::TermCriteria stop(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 0.003);
-  std::vector<bool> keep(tracks.size(), true);
-  for (const auto& [anchor, indices] : by_anchor) {
-    std::vector<cv::Point2f> from, to;
-    for (size_t i : indices) {
-      from.push_back(tracks[i].anchor_pixel);
-      to.push_back(tracks[i].pixel);
-    }
-    std::vector<uchar> status;
-    std::vector<float> err;
-    cv::calcOpticalFlowPyrLK(*anchor, *pyramid_, from, to, status, err, window, 1, stop,
-                             cv::OPTFLOW_USE_INITIAL_FLOW, options_.klt_min_eigenvalue);
-    for (size_t k = 0; k < indices.size(); ++k) {
-      Track& tr = tracks[indices[k]];
-      // The anchored match must agree with the frame-to-frame one; otherwise the appearance has
-      // changed too much since birth and the track ends.
-      if (!status[k] || cv::norm(to[k] - tr.pixel) > 1.0) {
-        keep[indices[k]] = false;
-        continue;
-      }
-      tr.pixel = to[k];
-    }
-  }
+void FeatureTracker::refineAgainstAnchors(std::vector<Track>& tracks,
+                                          const PlaneHomographies& homographies,
+                                          const cv::Mat& image) const {
+  TemplateAlignmentOptions alignment;
+  alignment.half_window = options_.klt_window / 2;
   std::vector<Track> out;
-  for (size_t i = 0; i < tracks.size(); ++i)
-    if (keep[i]) out.push_back(tracks[i]);
+  for (Track& tr : tracks) {
+    // Local affine map of the plane's homography at the previous position (identity without one).
+    const auto h = homographies.find(tr.plane_id);
+    if (h != homographies.end()) tr.warp = homographyJacobian(h->second, tr.from) * tr.warp;
+    cv::Mat singular_values;
+    cv::SVD::compute(tr.warp, singular_values, cv::SVD::NO_UV);
+    const double largest = singular_values.at<double>(0), smallest = singular_values.at<double>(1);
+    if (largest > options_.max_warp_scale || smallest < 1 / options_.max_warp_scale) continue;
+    const auto aligned =
+        alignWarpedTemplate(tr.anchor, tr.anchor_pixel, tr.warp, image, tr.pixel, alignment);
+    // The anchored match must agree with the frame-to-frame one; otherwise the appearance has
+    // changed too much since birth and the track ends.
+    if (!aligned || cv::norm(*aligned - tr.pixel) > 1.0) continue;
+    tr.pixel = *aligned;
+    out.push_back(tr);
+  }
   tracks.swap(out);
 }
 
-void FeatureTracker::rejectOutliers(std::vector<Track>& tracks) const {
+FeatureTracker::PlaneHomographies FeatureTracker::rejectOutliers(std::vector<Track>& tracks) const {
   // Group by plane (one group without masks), test each group against its own model.
   std::map<int, std::vector<size_t>> groups;
   for (size_t i = 0; i < tracks.size(); ++i)
@@ -122,6 +125,7 @@ void FeatureTracker::rejectOutliers(std::vector<Track>& tracks) const {
   std::unordered_map<int, cv::Point2f> previous_normalized;
   for (const Track& p : tracks_) previous_normalized[p.id] = p.normalized;
   std::vector<bool> keep(tracks.size(), true);
+  PlaneHomographies homographies;
   for (const auto& [plane, indices] : groups) {
     std::vector<cv::Point2f> from, to;
     for (size_t i : indices) {
@@ -131,12 +135,24 @@ void FeatureTracker::rejectOutliers(std::vector<Track>& tracks) const {
     const std::vector<bool> inliers = options_.use_masks
                                           ? homographyInliers(from, to, options_.ransac)
                                           : fundamentalInliers(from, to, options_.ransac);
-    for (size_t k = 0; k < indices.size(); ++k) keep[indices[k]] = inliers[k];
+    std::vector<cv::Point2f> inlier_from, inlier_to;
+    for (size_t k = 0; k < indices.size(); ++k) {
+      keep[indices[k]] = inliers[k];
+      if (!inliers[k]) continue;
+      inlier_from.push_back(tracks[indices[k]].from);
+      inlier_to.push_back(tracks[indices[k]].pixel);
+    }
+    // The plane's image motion in pixels, least squares over its inliers (warps the birth patches).
+    if (options_.use_masks && inlier_from.size() >= kMinHomographyFeatures) {
+      const cv::Mat H = cv::findHomography(inlier_from, inlier_to, 0);
+      if (!H.empty()) homographies[plane] = cv::Matx33d(H);
+    }
   }
   std::vector<Track> out;
   for (size_t i = 0; i < tracks.size(); ++i)
     if (keep[i]) out.push_back(tracks[i]);
   tracks.swap(out);
+  return homographies;
 }
 
 namespace {
@@ -167,6 +183,13 @@ void FeatureTracker::computeUniformRegions(const cv::Mat& mask) {
 
 cv::Mat FeatureTracker::detectionMask(const std::vector<Track>& kept) const {
   cv::Mat allowed = detectable_.clone();
+  // Corners whose birth patch would leave the image could not be anchored.
+  const int border = options_.klt_window / 2 + 2;
+  if (allowed.cols > 2 * border && allowed.rows > 2 * border) {
+    cv::Mat interior(allowed.size(), CV_8U, cv::Scalar(0));
+    interior(cv::Rect(border, border, allowed.cols - 2 * border, allowed.rows - 2 * border)) = 255;
+    allowed &= interior;
+  }
   for (const Track& tr : kept)
     cv::circle(allowed, tr.pixel, static_cast<int>(options_.min_distance), cv::Scalar(0),
                cv::FILLED);
@@ -219,21 +242,14 @@ FeatureFrame FeatureTracker::track(double t, const cv::Mat& raw_image, const cv:
   }
   if (!options_.use_masks) mask = cv::Mat(image.size(), CV_8U, cv::Scalar(0));
 
+  image = image.clone();  // kept as the birth image of this frame's new tracks
   computeUniformRegions(mask);
-  {
-    auto pyramid = std::make_shared<std::vector<cv::Mat>>();
-    cv::buildOpticalFlowPyramid(image, *pyramid, cv::Size(options_.klt_window, options_.klt_window),
-                                1);
-    pyramid_ = pyramid;
-  }
   std::vector<Track> kept = propagate(image, mask);
-  if (options_.anchor_refinement) refineAgainstAnchors(kept);
-  if (!kept.empty()) {
-    std::vector<cv::Point2f> pixels;
-    for (const Track& tr : kept) pixels.push_back(tr.pixel);
-    const auto normalized = undistortToNormalized(pixels, camera_);
-    for (size_t i = 0; i < kept.size(); ++i) kept[i].normalized = normalized[i];
-    rejectOutliers(kept);
+  undistort(kept);
+  const PlaneHomographies homographies = rejectOutliers(kept);
+  if (options_.anchor_refinement) {
+    refineAgainstAnchors(kept, homographies, image);
+    undistort(kept);
   }
   // Longest tracks first: they claim their neighbourhood before shorter ones.
   std::stable_sort(kept.begin(), kept.end(),
@@ -262,7 +278,7 @@ FeatureFrame FeatureTracker::track(double t, const cv::Mat& raw_image, const cv:
       const int label = options_.use_masks
                             ? raw_mask.at<uint8_t>(cvRound(corners[i].y), cvRound(corners[i].x))
                             : 0;
-      spaced.push_back({next_id_++, label, 1, corners[i], normalized[i], pyramid_, corners[i]});
+      spaced.push_back({next_id_++, label, 1, corners[i], normalized[i], image, corners[i]});
     }
   }
   previous_ = tracks_;

@@ -2,6 +2,7 @@
 // Plane-masked KLT feature tracking with per-plane homography RANSAC (RP-VIO's front-end,
 // DESIGN.md §1 step 1). Pure image processing, no rawlog or module dependency: tests and the
 // initializer use it directly; FeatureTrackerModule wraps it for the pipeline.
+#include <map>
 #include <memory>
 #include <opencv2/core.hpp>
 #include <string>
@@ -9,6 +10,7 @@
 
 #include "mrpt_modules/core/feature_frame.h"
 #include "mrpt_modules/frontend/outlier_rejection.h"
+#include "mrpt_modules/frontend/warped_template_alignment.h"
 #include "rawlog_io/calibration.h"
 #include "rawlog_io/ini_file.h"
 
@@ -29,9 +31,11 @@ struct TrackerOptions {
   double klt_min_eigenvalue = 2e-2;  // drops windows on a single edge (aperture problem)
   bool clahe = false;
   RansacOptions ransac;  // 1 px at the virtual focal length 460
-  // Re-align every track on the image it was born in (frame-to-frame result as initial guess), so
-  // KLT errors do not accumulate along the track.
+  // Re-align every track on the image it was born in (frame-to-frame result as initial guess), the
+  // birth patch warped by its plane's homographies, so KLT errors do not accumulate along the
+  // track.
   bool anchor_refinement = true;
+  double max_warp_scale = 3.0;  // a track ends when its warp stretches or shrinks more than this
 
   /// Reads the keys present in `section` (others keep their defaults).
   static TrackerOptions load(const IniFile& ini, const std::string& section);
@@ -54,13 +58,18 @@ class FeatureTracker {
   struct Track {
     int id, plane_id, length;
     cv::Point2f pixel, normalized;
-    std::shared_ptr<const std::vector<cv::Mat>> anchor;  // pyramid of the image it was born in
-    cv::Point2f anchor_pixel;                            // where it was born
+    cv::Mat anchor;                         // the image it was born in
+    cv::Point2f anchor_pixel;               // where it was born
+    cv::Point2f from;                       // pixel in the previous frame
+    cv::Matx22d warp = cv::Matx22d::eye();  // offsets around the birth pixel → current offsets
   };
+  using PlaneHomographies = std::map<int, cv::Matx33d>;  // plane → previous-to-current (pixels)
   void warnOnce(const std::string& message);
+  void undistort(std::vector<Track>& tracks) const;
   std::vector<Track> propagate(const cv::Mat& image, const cv::Mat& mask);
-  void refineAgainstAnchors(std::vector<Track>& tracks) const;
-  void rejectOutliers(std::vector<Track>& tracks) const;
+  void refineAgainstAnchors(std::vector<Track>& tracks, const PlaneHomographies& homographies,
+                            const cv::Mat& image) const;
+  PlaneHomographies rejectOutliers(std::vector<Track>& tracks) const;
   cv::Mat detectionMask(const std::vector<Track>& kept) const;
   void computeUniformRegions(const cv::Mat& mask);
   FeatureFrame publish(double t, double dt);
@@ -68,9 +77,8 @@ class FeatureTracker {
   CameraIntrinsics camera_;
   TrackerOptions options_;
   cv::Mat previous_image_;
-  std::shared_ptr<const std::vector<cv::Mat>> pyramid_;  // of the current image
-  std::vector<Track> tracks_;                            // current frame
-  std::vector<Track> previous_;                          // previous frame (same ids where tracked)
+  std::vector<Track> tracks_;    // current frame
+  std::vector<Track> previous_;  // previous frame (same ids where tracked)
   double previous_t_ = 0;
   cv::Mat detectable_;  // plane pixels after the per-plane erosion
   cv::Mat trackable_;   // plane pixels with no other label within window_margin

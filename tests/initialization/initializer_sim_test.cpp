@@ -57,9 +57,7 @@ Outcome runOnSimulator(int characters, InitializerMethod method) {
   return out;
 }
 
-/// `max_bias_error`: issue 6 asks for 0.2; on C4 the measured 36% does not reach it, so that case
-/// only guards against regressions (0.4) until the visual rotations get more accurate.
-void expectPlanarInitialization(int characters, double max_bias_error = 0.2) {
+void expectPlanarInitialization(int characters) {
   const Outcome o = runOnSimulator(characters, InitializerMethod::kPlanarHomography);
   ASSERT_TRUE(o.initialized) << "C" << characters << " not initialized within 5 s: " << o.reason;
   std::printf(
@@ -68,11 +66,11 @@ void expectPlanarInitialization(int characters, double max_bias_error = 0.2) {
       characters, o.t, 100 * o.scale_error, o.gravity_error_deg, 100 * o.bias_error);
   EXPECT_LT(o.scale_error, 0.03);
   EXPECT_LT(o.gravity_error_deg, 0.5);
-  EXPECT_LT(o.bias_error, max_bias_error);
+  EXPECT_LT(o.bias_error, 0.2);
 }
 
 TEST(InitializerOnSimulator, PlanarStaticScene) { expectPlanarInitialization(0); }
-TEST(InitializerOnSimulator, PlanarFourCharacters) { expectPlanarInitialization(4, 0.4); }
+TEST(InitializerOnSimulator, PlanarFourCharacters) { expectPlanarInitialization(4); }
 TEST(InitializerOnSimulator, PlanarEightCharacters) { expectPlanarInitialization(8); }
 
 TEST(InitializerOnSimulator, EssentialStaticSceneAndReportOnCharacters) {

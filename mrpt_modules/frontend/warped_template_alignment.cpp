@@ -1,0 +1,84 @@
+#include "mrpt_modules/frontend/warped_template_alignment.h"
+
+#include <cmath>
+#include <vector>
+
+namespace rpvio {
+namespace {
+
+/// Bilinear sample of a CV_8UC1 image; the caller keeps (x, y) inside [0, cols−1) × [0, rows−1).
+double sample(const cv::Mat& image, double x, double y) {
+  const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
+  const double ax = x - x0, ay = y - y0;
+  const uint8_t* row0 = image.ptr<uint8_t>(y0) + x0;
+  const uint8_t* row1 = image.ptr<uint8_t>(y0 + 1) + x0;
+  return (1 - ay) * ((1 - ax) * row0[0] + ax * row0[1]) + ay * ((1 - ax) * row1[0] + ax * row1[1]);
+}
+
+bool inside(const cv::Mat& image, double x, double y) {
+  return x >= 0 && y >= 0 && x < image.cols - 1 && y < image.rows - 1;
+}
+
+}  // namespace
+
+std::optional<cv::Point2f> alignWarpedTemplate(const cv::Mat& birth_image, cv::Point2f birth_pixel,
+                                               const cv::Matx22d& warp, const cv::Mat& image,
+                                               cv::Point2f initial,
+                                               const TemplateAlignmentOptions& o) {
+  const double det = cv::determinant(warp);
+  if (!(std::abs(det) > 1e-6)) return std::nullopt;
+  const cv::Matx22d to_birth = warp.inv();
+  const int r = o.half_window, side = 2 * r + 1, wide = side + 2;
+  // Template T(v) = I_birth(x_birth + W⁻¹ v) on the integer offsets v of the current image (one
+  // pixel wider for its central-difference gradient).
+  std::vector<double> T(wide * wide);
+  for (int j = -r - 1; j <= r + 1; ++j)
+    for (int i = -r - 1; i <= r + 1; ++i) {
+      const cv::Vec2d u = to_birth * cv::Vec2d(i, j);
+      const double x = birth_pixel.x + u[0], y = birth_pixel.y + u[1];
+      if (!inside(birth_image, x, y)) return std::nullopt;
+      T[(j + r + 1) * wide + i + r + 1] = sample(birth_image, x, y);
+    }
+  // Residual e(v) = I(x + v) − g T(v) − b; unknowns (x, y, g, b). Inverse-compositional style: the
+  // Jacobian (∇T, −T, −1) is the template's, so the normal matrix is built once.
+  std::vector<cv::Vec4d> J(side * side);
+  cv::Matx44d H = cv::Matx44d::zeros();
+  for (int j = 0; j < side; ++j)
+    for (int i = 0; i < side; ++i) {
+      const double* t = &T[(j + 1) * wide + i + 1];
+      J[j * side + i] = cv::Vec4d(0.5 * (t[1] - t[-1]), 0.5 * (t[wide] - t[-wide]), -t[0], -1);
+      H += J[j * side + i] * J[j * side + i].t();
+    }
+  cv::Matx44d H_inv;
+  if (cv::invert(H, H_inv, cv::DECOMP_CHOLESKY) == 0) return std::nullopt;
+  double x = initial.x, y = initial.y, gain = 1, offset = 0;
+  for (int iteration = 0; iteration < o.max_iterations; ++iteration) {
+    if (!inside(image, x - r, y - r) || !inside(image, x + r, y + r)) return std::nullopt;
+    cv::Vec4d g = cv::Vec4d::all(0);
+    for (int j = 0; j < side; ++j)
+      for (int i = 0; i < side; ++i) {
+        const double e =
+            sample(image, x + i - r, y + j - r) - gain * T[(j + 1) * wide + i + 1] - offset;
+        g += e * J[j * side + i];
+      }
+    const cv::Vec4d step = -(H_inv * g);
+    x += step[0] / gain;  // ∂e/∂x = ∇I ≈ g ∇T
+    y += step[1] / gain;
+    gain += step[2];
+    offset += step[3];
+    if (std::hypot(x - initial.x, y - initial.y) > r) return std::nullopt;
+    if (std::hypot(step[0], step[1]) < o.converged_px) break;
+  }
+  return cv::Point2f(static_cast<float>(x), static_cast<float>(y));
+}
+
+cv::Matx22d homographyJacobian(const cv::Matx33d& H, cv::Point2f p) {
+  const cv::Vec3d q = H * cv::Vec3d(p.x, p.y, 1);
+  const double u = q[0] / q[2], v = q[1] / q[2];
+  // ∂(q_xy / q_z)/∂p = (H_xy,xy − (u, v)ᵀ H_z,xy) / q_z
+  return cv::Matx22d(H(0, 0) - u * H(2, 0), H(0, 1) - u * H(2, 1), H(1, 0) - v * H(2, 0),
+                     H(1, 1) - v * H(2, 1)) *
+         (1.0 / q[2]);
+}
+
+}  // namespace rpvio
