@@ -278,7 +278,8 @@ FeatureFrame FeatureTracker::track(double t, const cv::Mat& raw_image, const cv:
       const int label = options_.use_masks
                             ? raw_mask.at<uint8_t>(cvRound(corners[i].y), cvRound(corners[i].x))
                             : 0;
-      spaced.push_back({next_id_++, label, 1, corners[i], normalized[i], image, corners[i]});
+      spaced.push_back(
+          {next_id_++, label, 1, corners[i], normalized[i], image, corners[i], corners[i]});
     }
   }
   previous_ = tracks_;
