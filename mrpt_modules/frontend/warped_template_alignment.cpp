@@ -54,13 +54,21 @@ std::optional<cv::Point2f> alignWarpedTemplate(const cv::Mat& birth_image, cv::P
   double x = initial.x, y = initial.y, gain = 1, offset = 0;
   for (int iteration = 0; iteration < o.max_iterations; ++iteration) {
     if (!inside(image, x - r, y - r) || !inside(image, x + r, y + r)) return std::nullopt;
+    // Every sample I(x + v) shares the fractional part of x: one set of bilinear weights.
+    const int x0 = static_cast<int>(x) - r, y0 = static_cast<int>(y) - r;
+    const double ax = x - static_cast<int>(x), ay = y - static_cast<int>(y);
+    const double w00 = (1 - ax) * (1 - ay), w01 = ax * (1 - ay), w10 = (1 - ax) * ay, w11 = ax * ay;
     cv::Vec4d g = cv::Vec4d::all(0);
-    for (int j = 0; j < side; ++j)
+    for (int j = 0; j < side; ++j) {
+      const uint8_t* row0 = image.ptr<uint8_t>(y0 + j) + x0;
+      const uint8_t* row1 = image.ptr<uint8_t>(y0 + j + 1) + x0;
+      const double* t = &T[(j + 1) * wide + 1];
+      const cv::Vec4d* Jj = &J[j * side];
       for (int i = 0; i < side; ++i) {
-        const double e =
-            sample(image, x + i - r, y + j - r) - gain * T[(j + 1) * wide + i + 1] - offset;
-        g += e * J[j * side + i];
+        const double I = w00 * row0[i] + w01 * row0[i + 1] + w10 * row1[i] + w11 * row1[i + 1];
+        g += (I - gain * t[i] - offset) * Jj[i];
       }
+    }
     const cv::Vec4d step = -(H_inv * g);
     x += step[0] / gain;  // ∂e/∂x = ∇I ≈ g ∇T
     y += step[1] / gain;
@@ -69,6 +77,8 @@ std::optional<cv::Point2f> alignWarpedTemplate(const cv::Mat& birth_image, cv::P
     if (std::hypot(x - initial.x, y - initial.y) > r) return std::nullopt;
     if (std::hypot(step[0], step[1]) < o.converged_px) break;
   }
+  // A patch that only matches with its contrast halved or doubled is not the same patch.
+  if (gain < o.min_gain || gain > 1 / o.min_gain) return std::nullopt;
   return cv::Point2f(static_cast<float>(x), static_cast<float>(y));
 }
 
