@@ -5,13 +5,31 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
+#include <optional>
 #include <unordered_map>
 
 #include "mrpt_modules/frontend/point_undistortion.h"
 
 namespace rpvio {
 namespace {
-const size_t kMinHomographyFeatures = 8;
+const size_t kMinHomographyFeatures = 8;  // fewer (down to kMinAffineFeatures): an affine map
+const size_t kMinAffineFeatures = 4;
+
+/// The plane's image motion between consecutive frames, least squares over its inliers: a
+/// homography, or an affine map on a small plane; nothing from fewer than kMinAffineFeatures.
+std::optional<cv::Matx33d> planeImageMotion(const std::vector<cv::Point2f>& from,
+                                            const std::vector<cv::Point2f>& to) {
+  if (from.size() >= kMinHomographyFeatures) {
+    const cv::Mat H = cv::findHomography(from, to, 0);
+    if (!H.empty()) return cv::Matx33d(H);
+  } else if (from.size() >= kMinAffineFeatures) {
+    const cv::Mat A = cv::estimateAffine2D(from, to, cv::noArray(), cv::LMEDS);
+    if (!A.empty())
+      return cv::Matx33d(A.at<double>(0, 0), A.at<double>(0, 1), A.at<double>(0, 2),
+                         A.at<double>(1, 0), A.at<double>(1, 1), A.at<double>(1, 2), 0, 0, 1);
+  }
+  return std::nullopt;
+}
 }  // namespace
 
 TrackerOptions TrackerOptions::load(const IniFile& ini, const std::string& s) {
@@ -142,11 +160,9 @@ FeatureTracker::PlaneHomographies FeatureTracker::rejectOutliers(std::vector<Tra
       inlier_from.push_back(tracks[indices[k]].from);
       inlier_to.push_back(tracks[indices[k]].pixel);
     }
-    // The plane's image motion in pixels, least squares over its inliers (warps the birth patches).
-    if (options_.use_masks && inlier_from.size() >= kMinHomographyFeatures) {
-      const cv::Mat H = cv::findHomography(inlier_from, inlier_to, 0);
-      if (!H.empty()) homographies[plane] = cv::Matx33d(H);
-    }
+    // The plane's image motion in pixels warps the birth patches of its tracks.
+    if (!options_.use_masks) continue;
+    if (const auto motion = planeImageMotion(inlier_from, inlier_to)) homographies[plane] = *motion;
   }
   std::vector<Track> out;
   for (size_t i = 0; i < tracks.size(); ++i)
