@@ -1,5 +1,6 @@
 #include "apps/lib/slam_app.h"
 
+#include <malloc.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -69,6 +70,11 @@ struct FrameRow {
 }  // namespace
 
 int slamMain(int argc, char** argv) {
+  // Every frame allocates and frees image-sized buffers (images, masks, pyramids); above glibc's
+  // default mmap threshold each one is a fresh mapping whose pages fault in again, a few ms per
+  // frame. Keep them in the heap and give memory back only past 64 MB of free space.
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);
+  mallopt(M_TRIM_THRESHOLD, 64 << 20);
   return runApp("rpvio-slam", kUsage, [&] {
     const CommandLine cli(argc, argv, {"config", "calib", "rawlog", "out"}, {"quiet"});
     const std::string out = cli.value("out");
