@@ -19,6 +19,21 @@ bool inside(const cv::Mat& image, double x, double y) {
   return x >= 0 && y >= 0 && x < image.cols - 1 && y < image.rows - 1;
 }
 
+/// Zero-mean normalized cross-correlation of the template's inner side² samples (row stride
+/// `wide`, one-pixel border) with the image patch whose top-left corner is at (x0, y0).
+double zeroMeanCorrelation(const std::vector<double>& T, int wide, const cv::Mat& image, double x0,
+                           double y0, int side) {
+  double st = 0, si = 0, stt = 0, sii = 0, sti = 0;
+  for (int j = 0; j < side; ++j)
+    for (int i = 0; i < side; ++i) {
+      const double t = T[(j + 1) * wide + i + 1], v = sample(image, x0 + i, y0 + j);
+      st += t, si += v, stt += t * t, sii += v * v, sti += t * v;
+    }
+  const double n = side * side;
+  const double var_t = stt - st * st / n, var_i = sii - si * si / n;
+  return var_t > 0 && var_i > 0 ? (sti - st * si / n) / std::sqrt(var_t * var_i) : 0.0;
+}
+
 }  // namespace
 
 std::optional<cv::Point2f> alignWarpedTemplate(const cv::Mat& birth_image, cv::Point2f birth_pixel,
@@ -79,6 +94,8 @@ std::optional<cv::Point2f> alignWarpedTemplate(const cv::Mat& birth_image, cv::P
   }
   // A patch that only matches with its contrast halved or doubled is not the same patch.
   if (gain < o.min_gain || gain > 1 / o.min_gain) return std::nullopt;
+  if (zeroMeanCorrelation(T, wide, image, x - r, y - r, side) < o.min_correlation)
+    return std::nullopt;
   return cv::Point2f(static_cast<float>(x), static_cast<float>(y));
 }
 
