@@ -49,7 +49,7 @@ TEST(TrackerOnSimulator, StaticSequenceTracksAtAnalyticProjections) {
   const double median = percentile(errors, 0.5), p95 = percentile(errors, 0.95);
   std::printf("static 5 s: %zu tracked positions, error median %.3f px, p95 %.3f px\n",
               errors.size(), median, p95);
-  // Issue 5: median < 0.15 px, p95 < 0.5 px (measured 0.04 and 0.25 px with the birth patches
+  // Issue 5: median < 0.15 px, p95 < 0.5 px (measured 0.04 and 0.14 px with the birth patches
   // warped by their plane's homographies; 0.21 and 2.3 px with a translational re-alignment).
   EXPECT_LT(median, 0.15);
   EXPECT_LT(p95, 0.5);
