@@ -94,7 +94,9 @@ std::optional<cv::Point2f> alignWarpedTemplate(const cv::Mat& birth_image, cv::P
   }
   // A patch that only matches with its contrast halved or doubled is not the same patch.
   if (gain < o.min_gain || gain > 1 / o.min_gain) return std::nullopt;
-  if (zeroMeanCorrelation(T, wide, image, x - r, y - r, side) < o.min_correlation)
+  // The last step may have moved the patch past the border.
+  if (!inside(image, x - r, y - r) || !inside(image, x + r, y + r) ||
+      zeroMeanCorrelation(T, wide, image, x - r, y - r, side) < o.min_correlation)
     return std::nullopt;
   return cv::Point2f(static_cast<float>(x), static_cast<float>(y));
 }

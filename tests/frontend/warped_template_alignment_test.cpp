@@ -83,6 +83,11 @@ TEST(WarpedTemplateAlignment, PatchLeavingTheImageIsNoMatch) {
   EXPECT_FALSE(alignWarpedTemplate(birth, {5, 5}, cv::Matx22d::eye(), birth, {5, 5}));
   EXPECT_FALSE(alignWarpedTemplate(birth, {300, 200}, cv::Matx22d::eye(), birth, {635, 200}));
   EXPECT_FALSE(alignWarpedTemplate(birth, {300, 200}, cv::Matx22d::zeros(), birth, {300, 200}));
+  // The true match lies where its patch would cross the right border; the guess is still inside.
+  cv::Mat current;
+  const cv::Matx33d shift(1, 0, 3.5, 0, 1, 0, 0, 0, 1);
+  cv::warpPerspective(birth, current, cv::Mat(shift), birth.size(), cv::INTER_CUBIC);
+  EXPECT_FALSE(alignWarpedTemplate(birth, {626, 200}, cv::Matx22d::eye(), current, {628, 200}));
 }
 
 TEST(WarpedTemplateAlignment, HomographyJacobianMatchesNumericDerivative) {
