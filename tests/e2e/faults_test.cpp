@@ -7,7 +7,8 @@
 //    tracking resumes (re-initialization) within 5 s of the fault's end.
 //  - kDegrades: the run finishes cleanly; the accuracy is printed. Not reached yet: with an
 //    unknown 30 ms camera-IMU offset rpvio-single ends at 0.40 m, 9x the fault-free 0.044 m (no
-//    time-offset estimation: the offset times the take-off's jerk scales the initial estimate by 6%).
+//    time-offset estimation: the offset times the take-off's jerk scales the initial estimate by
+//    6%).
 #include <gtest/gtest.h>
 #include <sys/file.h>
 
