@@ -9,6 +9,7 @@
 #include <unordered_map>
 
 #include "mrpt_modules/frontend/point_undistortion.h"
+#include "mrpt_modules/frontend/warped_template_alignment.h"
 
 namespace rpvio {
 namespace {

@@ -3,14 +3,12 @@
 // DESIGN.md §1 step 1). Pure image processing, no rawlog or module dependency: tests and the
 // initializer use it directly; FeatureTrackerModule wraps it for the pipeline.
 #include <map>
-#include <memory>
 #include <opencv2/core.hpp>
 #include <string>
 #include <vector>
 
 #include "mrpt_modules/core/feature_frame.h"
 #include "mrpt_modules/frontend/outlier_rejection.h"
-#include "mrpt_modules/frontend/warped_template_alignment.h"
 #include "rawlog_io/calibration.h"
 #include "rawlog_io/ini_file.h"
 
