@@ -34,6 +34,8 @@ struct TrackerOptions {
   // track.
   bool anchor_refinement = true;
   double max_warp_scale = 3.0;  // a track ends when its warp stretches or shrinks more than this
+  // Corners are detected on this pyramid level (0 = full resolution; 1 = half, 4x cheaper).
+  int detection_level = 1;
 
   /// Reads the keys present in `section` (others keep their defaults).
   static TrackerOptions load(const IniFile& ini, const std::string& section);
@@ -69,6 +71,8 @@ class FeatureTracker {
                             const cv::Mat& image) const;
   PlaneHomographies rejectOutliers(std::vector<Track>& tracks) const;
   cv::Mat detectionMask(const std::vector<Track>& kept) const;
+  std::vector<cv::Point2f> detectCorners(const cv::Mat& image, const cv::Mat& allowed,
+                                         int wanted) const;
   void computeUniformRegions(const cv::Mat& mask);
   FeatureFrame publish(double t, double dt);
 

@@ -1,10 +1,14 @@
 // FeatureTracker on synthetic images: known motion, masks respected, degraded input handled.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <opencv2/imgproc.hpp>
 
 #include "mrpt_modules/frontend/feature_tracker.h"
+#include "rawlog_io/input_error.h"
+#include "tests/test_util.h"
 
 namespace rpvio {
 namespace {
@@ -77,6 +81,51 @@ TEST(FeatureTracker, DetectsOnlyInsideErodedPlanes) {
     EXPECT_GT(std::abs(feat.pixel.x() - 320), 1.5);
     EXPECT_LT(feat.pixel.x(), 520 - 1.5);
     EXPECT_EQ(feat.plane_id, feat.pixel.x() < 320 ? 1 : 2);
+  }
+}
+
+TEST(FeatureTracker, DetectsSpacedCornersOnEveryPyramidLevel) {
+  const cv::Mat img = texture(4);
+  const cv::Mat mask(480, 640, CV_8U, cv::Scalar(1));
+  // Trackability: smallest eigenvalue of the structure tensor over a KLT window (21 px).
+  cv::Mat response;
+  cv::cornerMinEigenVal(img, response, 21);
+  auto median = [](std::vector<float> v) {
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  };
+  const float everywhere = median(response.reshape(1, 1));
+  for (int level : {0, 1, 2}) {
+    SCOPED_TRACE("detection_level " + std::to_string(level));
+    TrackerOptions options;
+    options.detection_level = level;
+    const FeatureFrame f = FeatureTracker(camera(), options).track(0.0, img, mask);
+    EXPECT_GT(f.features.size(), 120u);
+    std::vector<float> at_corners;
+    for (size_t i = 0; i < f.features.size(); ++i) {
+      const Eigen::Vector2d& p = f.features[i].pixel;
+      at_corners.push_back(response.at<float>(cv::Point(cvRound(p.x()), cvRound(p.y()))));
+      // Inside the image by more than half a KLT window, spaced by min_distance.
+      EXPECT_GE(std::min({p.x(), p.y(), 639 - p.x(), 479 - p.y()}), 12.0);
+      for (size_t j = 0; j < i; ++j)
+        EXPECT_GE((f.features[j].pixel - p).norm(), options.min_distance);
+    }
+    std::printf("level %d: %zu corners, trackability median %.3g vs %.3g over the image\n", level,
+                f.features.size(), median(at_corners), everywhere);
+    EXPECT_GT(median(at_corners), 2 * everywhere);
+  }
+}
+
+TEST(FeatureTracker, DetectionLevelOutOfRangeIsABadConfig) {
+  test::TempDir dir;
+  test::writeText(dir.file("tracker.ini"),
+                  "[FeatureTracker]\nmax_features = 100\ndetection_level = 5\n");
+  try {
+    TrackerOptions::load(IniFile(dir.file("tracker.ini")), "FeatureTracker");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(dir.file("tracker.ini")), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("line 3"), std::string::npos) << e.what();
   }
 }
 
