@@ -2,6 +2,8 @@
 // Run: build/bin/bench_frontend --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
+#include <opencv2/core/utility.hpp>
+
 #include "mrpt_modules/frontend/feature_tracker.h"
 #include "rawlog_io/sim/simulator.h"
 
@@ -51,4 +53,11 @@ BENCHMARK(BM_FrontendNoMasks)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  cv::setNumThreads(1);  // one core, as rpvio-slam runs by default
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -24,7 +24,7 @@ run() {  # run DURATION: simulates (once) and processes a sequence, prints the p
 }
 
 median_total_ms() {  # median_total_ms STATS FROM_S TO_S: median total_ms of frames in [FROM, TO)
-  awk -F, -v a="$2" -v b="$3" 'NR > 1 && $1 >= a && $1 < b { print $4 }' "$1" | sort -g |
+  awk -F, -v a="$2" -v b="$3" 'NR > 1 && $1 >= a && $1 < b { print $5 }' "$1" | sort -g |
     awk '{ v[NR] = $1 } END { if (NR == 0) print "nan"; else if (NR % 2) print v[(NR + 1) / 2];
                               else printf "%.3f\n", (v[NR / 2] + v[NR / 2 + 1]) / 2 }'
 }

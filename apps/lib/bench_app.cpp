@@ -141,6 +141,9 @@ std::optional<eval::EvalResult> evaluateRun(BenchRun& run, const Trajectory& gt)
   run.optimization_ms_p95 = number("optimization_ms_p95");
   run.total_ms_median = number("total_ms_median");
   run.total_ms_p95 = number("total_ms_p95");
+  run.load_ms_median = number("load_ms_median");
+  run.processing_ms_median = number("processing_ms_median");
+  run.processing_ms_p95 = number("processing_ms_p95");
   run.real_time_factor = number("real_time_factor");
   run.peak_memory_mb = number("peak_memory_mb");
   if (run.exit_code != 0) {

@@ -17,7 +17,8 @@ struct BenchRun {
   // From the run's summary.json.
   double initialized_at = -1, resets = 0;
   double frontend_ms_median = 0, frontend_ms_p95 = 0, optimization_ms_median = 0,
-         optimization_ms_p95 = 0, total_ms_median = 0, total_ms_p95 = 0;
+         optimization_ms_p95 = 0, total_ms_median = 0, total_ms_p95 = 0, load_ms_median = 0,
+         processing_ms_median = 0, processing_ms_p95 = 0;
   double real_time_factor = 0, peak_memory_mb = 0, wall_s = 0;
 };
 

@@ -1,5 +1,7 @@
 #include "mrpt_modules/frontend/feature_tracker_module.h"
 
+#include <chrono>
+
 #include "rawlog_io/rawlog_labels.h"
 #include "rawlog_io/rawlog_reader.h"
 
@@ -23,17 +25,30 @@ void FeatureTrackerModule::initialize(const IniFile& config, const std::string& 
                                 << options.min_distance);
 }
 
+cv::Mat FeatureTrackerModule::timedLoad(const ObservationMessage& m) {
+  const auto start = std::chrono::steady_clock::now();
+  cv::Mat image =
+      loadGrayImage(dynamic_cast<const mrpt::obs::CObservationImage&>(*m.observation), *m.reader);
+  load_ms_ +=
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return image;
+}
+
+double FeatureTrackerModule::takeLoadMs() {
+  const double ms = load_ms_;
+  load_ms_ = 0;
+  return ms;
+}
+
 void FeatureTrackerModule::onImage(const ObservationMessage& m) {
-  const auto& obs = dynamic_cast<const mrpt::obs::CObservationImage&>(*m.observation);
-  const double t = toSeconds(obs.timestamp);
-  pending_images_[t] = loadGrayImage(obs, *m.reader);
+  const double t = toSeconds(m.observation->timestamp);
+  pending_images_[t] = timedLoad(m);
   process(t);
 }
 
 void FeatureTrackerModule::onMask(const ObservationMessage& m) {
-  const auto& obs = dynamic_cast<const mrpt::obs::CObservationImage&>(*m.observation);
-  const double t = toSeconds(obs.timestamp);
-  pending_masks_[t] = loadGrayImage(obs, *m.reader);
+  const double t = toSeconds(m.observation->timestamp);
+  pending_masks_[t] = timedLoad(m);
   process(t);
 }
 

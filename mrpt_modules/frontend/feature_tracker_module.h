@@ -18,17 +18,21 @@ class FeatureTrackerModule : public Module {
                   PipelineContext& context) override;
   void finish() override;
   size_t framesPublished() const { return frames_published_; }
+  /// Milliseconds spent reading and decoding images and masks since the previous call.
+  double takeLoadMs();
 
  private:
   void onImage(const ObservationMessage& message);
   void onMask(const ObservationMessage& message);
   void process(double t);
+  cv::Mat timedLoad(const ObservationMessage& message);
 
   std::unique_ptr<FeatureTracker> tracker_;
   const Bus* bus_ = nullptr;
   bool use_masks_ = true;
   std::map<double, cv::Mat> pending_images_, pending_masks_;
   size_t frames_published_ = 0;
+  double load_ms_ = 0;
 };
 
 /// Registers the front-end module classes with MRPT RTTI (call once before building pipelines).

@@ -32,6 +32,7 @@ TEST(BenchApp, ShortSuiteSideBySide) {
   EXPECT_NE(markdown.find("| vins-mono |"), std::string::npos) << markdown;
   EXPECT_NE(markdown.find("| rpvio-single |"), std::string::npos) << markdown;
   EXPECT_NE(markdown.find("total median"), std::string::npos) << markdown;
+  EXPECT_NE(markdown.find("processing median"), std::string::npos) << markdown;
 
   const std::string json = test::readFile(dir.file("out/results.json"));
   for (const char* mode : {"vins-mono", "rpvio-single"}) {
@@ -41,6 +42,10 @@ TEST(BenchApp, ShortSuiteSideBySide) {
     const double ate = test::jsonNumber(run, "ate_rmse");
     EXPECT_TRUE(ate > 0 && ate < 5) << run;
     EXPECT_GT(test::jsonNumber(run, "total_ms_median"), 0) << run;
+    EXPECT_GT(test::jsonNumber(run, "processing_ms_median"), 0) << run;
+    EXPECT_LT(test::jsonNumber(run, "processing_ms_median"),
+              test::jsonNumber(run, "total_ms_median"))
+        << run;
   }
   const std::string rpvio = runObject(json, "rpvio-single");
   EXPECT_GE(test::jsonNumber(rpvio, "coverage"), 0.9) << rpvio;

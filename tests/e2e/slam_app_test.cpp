@@ -33,7 +33,22 @@ TEST(SlamApp, WritesOutputsAndIsDeterministic) {
   const std::string summary = test::readFile(dir.file("a/summary.json"));
   EXPECT_EQ(test::jsonNumber(summary, "resets"), 0) << summary;
   EXPECT_EQ(test::jsonNumber(summary, "poses"), static_cast<double>(trajectory.size())) << summary;
-  EXPECT_TRUE(std::filesystem::exists(dir.file("a/stats.csv")));
+  // Timing split: decoding of the image files, then the processing of the frame.
+  const double total = test::jsonNumber(summary, "total_ms_median");
+  const double load = test::jsonNumber(summary, "load_ms_median");
+  const double processing = test::jsonNumber(summary, "processing_ms_median");
+  EXPECT_GT(load, 0) << summary;
+  EXPECT_GT(processing, 0) << summary;
+  EXPECT_LE(processing, total) << summary;
+  std::ifstream stats(dir.file("a/stats.csv"));
+  std::string header, row;
+  ASSERT_TRUE(std::getline(stats, header) && std::getline(stats, row));
+  EXPECT_EQ(header, "t,load_ms,frontend_ms,optimization_ms,total_ms,features,planes,state");
+  double t = 0, load_ms = 0, frontend_ms = 0, optimization_ms = 0, total_ms = 0;
+  char comma = 0;
+  std::istringstream(row) >> t >> comma >> load_ms >> comma >> frontend_ms >> comma >>
+      optimization_ms >> comma >> total_ms;
+  EXPECT_NEAR(load_ms + frontend_ms + optimization_ms, total_ms, 0.0025) << row;
 }
 
 TEST(SlamApp, BadArgumentsExitTwo) {
@@ -46,6 +61,12 @@ TEST(SlamApp, BadArgumentsExitTwo) {
   EXPECT_NE(out.find("/nonexistent"), std::string::npos) << out;
   EXPECT_EQ(test::runCommand(test::binDir() + "/rpvio-slam --config x.ini", out), 2) << out;
   EXPECT_NE(out.find("missing required option"), std::string::npos) << out;
+  EXPECT_EQ(test::runCommand(test::binDir() + "/rpvio-slam --config x.ini --calib c.ini --rawlog "
+                                              "r.rawlog --out /tmp/z --threads 0",
+                             out),
+            2)
+      << out;
+  EXPECT_NE(out.find("--threads"), std::string::npos) << out;
 }
 
 }  // namespace
