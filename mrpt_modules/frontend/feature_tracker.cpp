@@ -95,9 +95,12 @@ std::vector<FeatureTracker::Track> FeatureTracker::propagate(const cv::Mat& imag
   const cv::TermCriteria stop(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 0.003);
   cv::calcOpticalFlowPyrLK(previous_image_, image, from, to, status, err, window,
                            options_.klt_levels, stop, 0, options_.klt_min_eigenvalue);
-  back = from;  // initial guess for the backward pass
+  // The backward pass starts where a consistent track must end (its origin), so it needs no
+  // coarse levels: one level absorbs up to a few pixels of inconsistency, beyond which the
+  // track is rejected anyway.
+  back = from;
   cv::calcOpticalFlowPyrLK(image, previous_image_, to, back, back_status, err, window,
-                           options_.klt_levels, stop, cv::OPTFLOW_USE_INITIAL_FLOW,
+                           std::min(options_.klt_levels, 1), stop, cv::OPTFLOW_USE_INITIAL_FLOW,
                            options_.klt_min_eigenvalue);
   const cv::Rect inside(1, 1, image.cols - 2, image.rows - 2);
   for (size_t i = 0; i < tracks_.size(); ++i) {
@@ -199,8 +202,15 @@ void FeatureTracker::computeUniformRegions(const cv::Mat& mask) {
     trackable_ = detectable_;
     return;
   }
-  detectable_ = uniformPlaneRegion(mask, options_.erosion_kernel, options_.erosion_iterations);
   trackable_ = uniformPlaneRegion(mask, 2 * options_.window_margin + 1, 1);
+  // Trackable pixels are uniform over the window margin; an erosion reaching no further changes
+  // nothing.
+  const int erosion_reach = options_.erosion_kernel / 2 * options_.erosion_iterations;
+  if (erosion_reach <= options_.window_margin) {
+    detectable_ = trackable_;
+    return;
+  }
+  detectable_ = uniformPlaneRegion(mask, options_.erosion_kernel, options_.erosion_iterations);
   detectable_ &= trackable_;
 }
 
@@ -223,18 +233,15 @@ std::vector<cv::Point2f> FeatureTracker::detectCorners(const cv::Mat& image, con
   return corners;
 }
 
-cv::Mat FeatureTracker::detectionMask(const std::vector<Track>& kept) const {
+cv::Mat FeatureTracker::detectionMask(const cv::Mat& taken) const {
   cv::Mat allowed = detectable_.clone();
+  allowed.setTo(0, taken);
   // Corners whose birth patch would leave the image could not be anchored.
-  const int border = options_.klt_window / 2 + 2;
-  if (allowed.cols > 2 * border && allowed.rows > 2 * border) {
-    cv::Mat interior(allowed.size(), CV_8U, cv::Scalar(0));
-    interior(cv::Rect(border, border, allowed.cols - 2 * border, allowed.rows - 2 * border)) = 255;
-    allowed &= interior;
-  }
-  for (const Track& tr : kept)
-    cv::circle(allowed, tr.pixel, static_cast<int>(options_.min_distance), cv::Scalar(0),
-               cv::FILLED);
+  const int border = std::min({options_.klt_window / 2 + 2, allowed.cols / 2, allowed.rows / 2});
+  allowed.rowRange(0, border) = 0;
+  allowed.rowRange(allowed.rows - border, allowed.rows) = 0;
+  allowed.colRange(0, border) = 0;
+  allowed.colRange(allowed.cols - border, allowed.cols) = 0;
   return allowed;
 }
 
@@ -307,7 +314,7 @@ FeatureFrame FeatureTracker::track(double t, const cv::Mat& raw_image, const cv:
 
   const int wanted = options_.max_features - static_cast<int>(spaced.size());
   if (wanted > 0) {
-    const cv::Mat allowed = detectionMask(spaced);
+    const cv::Mat allowed = detectionMask(taken);
     std::vector<cv::Point2f> corners;
     if (cv::countNonZero(allowed) > 0) {
       corners = detectCorners(image, allowed, wanted);

@@ -70,7 +70,8 @@ class FeatureTracker {
   void refineAgainstAnchors(std::vector<Track>& tracks, const PlaneHomographies& homographies,
                             const cv::Mat& image) const;
   PlaneHomographies rejectOutliers(std::vector<Track>& tracks) const;
-  cv::Mat detectionMask(const std::vector<Track>& kept) const;
+  /// Where new corners may go: detectable, not `taken` by a kept track, away from the border.
+  cv::Mat detectionMask(const cv::Mat& taken) const;
   std::vector<cv::Point2f> detectCorners(const cv::Mat& image, const cv::Mat& allowed,
                                          int wanted) const;
   void computeUniformRegions(const cv::Mat& mask);
