@@ -38,7 +38,7 @@ struct TrackerOptions {
   bool anchor_refinement = true;
   double max_warp_scale = 3.0;  // a track ends when its warp stretches or shrinks more than this
   // Corners are detected on this pyramid level (0 = full resolution; 1 = half, 4x cheaper).
-  int detection_level = 1;
+  int detection_level = 0;
 
   /// Reads the keys present in `section` (others keep their defaults).
   static TrackerOptions load(const IniFile& ini, const std::string& section);
