@@ -39,6 +39,7 @@ struct RunOutcome {
 };
 
 const std::string kSequence = " --characters 2 --duration 16";
+const char* const kConfig = "config/rpvio-single.ini";
 
 /// Simulates and runs one sequence in `dir`; ATE against the fault-free ground truth `gt_tum`.
 RunOutcome simulateAndRun(const std::string& sim_options, const std::string& dir) {
@@ -48,12 +49,11 @@ RunOutcome simulateAndRun(const std::string& sim_options, const std::string& dir
                              output),
             0)
       << output;
-  EXPECT_EQ(
-      test::runCommand(test::binDir() + "/rpvio-slam --config config/rpvio-single.ini --calib " +
-                           dir + "/seq/calib.ini --rawlog " + dir +
-                           "/seq/seq.rawlog --quiet --out " + dir + "/out",
-                       output),
-      0)
+  EXPECT_EQ(test::runCommand(test::binDir() + "/rpvio-slam --config " + kConfig + " --calib " +
+                                 dir + "/seq/calib.ini --rawlog " + dir +
+                                 "/seq/seq.rawlog --quiet --out " + dir + "/out",
+                             output),
+            0)
       << output;
   RunOutcome r;
   const std::string tum = test::readFile(dir + "/out/trajectory.tum");
@@ -68,15 +68,31 @@ RunOutcome simulateAndRun(const std::string& sim_options, const std::string& dir
   return r;
 }
 
-/// The fault-free run, made once (under a lock) in the build tree and shared by the tests.
+/// What the fault-free run depends on: the programs and the config, by modification time.
+std::string faultFreeStamp() {
+  std::string stamp;
+  for (const fs::path& p : {fs::path(test::binDir()) / "rpvio-sim",
+                            fs::path(test::binDir()) / "rpvio-slam", fs::path(kConfig)})
+    stamp +=
+        p.string() + " " + std::to_string(fs::last_write_time(p).time_since_epoch().count()) + "\n";
+  return stamp;
+}
+
+/// The fault-free run, made once (under a lock) in the build tree and shared by the tests; made
+/// again when a program or the config changed since.
 double faultFreeAte() {
   const fs::path dir = fs::path(test::binDir()) / ".." / "fault-free-run";
   fs::create_directories(dir);
   const int lock = ::open((dir / "lock").c_str(), O_CREAT | O_RDWR, 0644);
   ::flock(lock, LOCK_EX);
-  if (!fs::exists(dir / "ate")) {
+  const std::string stamp = faultFreeStamp();
+  if (!fs::exists(dir / "ate") || !fs::exists(dir / "stamp") ||
+      test::readFile((dir / "stamp").string()) != stamp) {
+    fs::remove_all(dir / "seq");
+    fs::remove_all(dir / "out");
     const RunOutcome r = simulateAndRun("", dir.string());
     test::writeText((dir / "ate").string(), std::to_string(r.ate));
+    test::writeText((dir / "stamp").string(), stamp);
   }
   const double ate = std::stod(test::readFile((dir / "ate").string()));
   ::flock(lock, LOCK_UN);
