@@ -189,10 +189,9 @@ int run(int argc, char** argv) {
   const std::string config_dir = cli.valueOr("config-dir", "config");
   setup.modes = cli.has("modes") ? splitList(cli.value("modes")) : kModes;
   setup.sequences = cli.has("sequences") ? splitList(cli.value("sequences")) : kSequences;
-  setup.runs = static_cast<int>(cli.number("runs", 1));
-  setup.jobs = static_cast<int>(cli.number("jobs", 1));
+  setup.runs = cli.count("runs", 1);
+  setup.jobs = cli.count("jobs", 1);
   if (setup.modes.empty() || setup.sequences.empty()) throw UsageError("no mode or no sequence");
-  if (setup.runs < 1 || setup.jobs < 1) throw UsageError("--runs and --jobs must be at least 1");
   for (const auto& s : setup.sequences) characters(s);  // names checked before any work
   for (const auto& mode : setup.modes)
     if (!fs::exists(fs::path(config_dir) / (mode + ".ini")))

@@ -1,7 +1,9 @@
 #include "apps/lib/command_line.h"
 
+#include <cmath>
 #include <cstdlib>
 #include <iostream>
+#include <limits>
 
 #include "rawlog_io/input_error.h"
 
@@ -46,6 +48,13 @@ double CommandLine::number(const std::string& name, double fallback) const {
   const double x = std::strtod(text.c_str(), &end);
   if (text.empty() || *end != '\0') throw UsageError("--" + name + " needs a number, got " + text);
   return x;
+}
+
+int CommandLine::count(const std::string& name, int fallback) const {
+  const double x = number(name, fallback);
+  if (!(x >= 1 && x <= std::numeric_limits<int>::max()) || x != std::floor(x))
+    throw UsageError("--" + name + " must be a whole number >= 1, got " + values_.at(name).back());
+  return static_cast<int>(x);
 }
 
 const std::vector<std::string>& CommandLine::values(const std::string& name) const {

@@ -28,6 +28,8 @@ class CommandLine {
   std::string value(const std::string& name) const;
   std::string valueOr(const std::string& name, const std::string& fallback) const;
   double number(const std::string& name, double fallback) const;
+  /// A whole number >= 1 (`fallback` when absent); UsageError otherwise.
+  int count(const std::string& name, int fallback) const;
   const std::vector<std::string>& values(const std::string& name) const;
   const std::vector<std::string>& positional() const { return positional_; }
 

@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iomanip>
@@ -78,10 +77,7 @@ int slamMain(int argc, char** argv) {
   return runApp("rpvio-slam", kUsage, [&] {
     const CommandLine cli(argc, argv, {"config", "calib", "rawlog", "out", "threads"}, {"quiet"});
     const std::string out = cli.value("out");
-    const double threads = cli.number("threads", 1);
-    if (threads < 1 || threads != std::floor(threads))
-      throw UsageError("--threads: a whole number >= 1, got " + cli.value("threads"));
-    cv::setNumThreads(static_cast<int>(threads));
+    cv::setNumThreads(cli.count("threads", 1));
     registerFrontendModules();
     registerEstimatorModules();
     Pipeline pipeline(cli.value("config"), Calibration::load(cli.value("calib")));
