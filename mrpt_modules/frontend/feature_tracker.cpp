@@ -83,26 +83,30 @@ std::vector<std::string> FeatureTracker::takeWarnings() {
   return out;
 }
 
-std::vector<FeatureTracker::Track> FeatureTracker::propagate(const cv::Mat& image,
+std::vector<FeatureTracker::Track> FeatureTracker::propagate(const Pyramid& pyramid,
                                                              const cv::Mat& mask) {
   std::vector<Track> kept;
-  if (tracks_.empty() || previous_image_.empty()) return kept;
+  if (tracks_.empty() || previous_pyramid_.empty()) return kept;
+  if (previous_pyramid_[0].size() != pyramid[0].size()) {
+    warnOnce("image size changed: tracks restarted");
+    return kept;
+  }
   std::vector<cv::Point2f> from, to, back;
   for (const Track& tr : tracks_) from.push_back(tr.pixel);
   std::vector<uchar> status, back_status;
   std::vector<float> err;
   const cv::Size window(options_.klt_window, options_.klt_window);
   const cv::TermCriteria stop(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 0.003);
-  cv::calcOpticalFlowPyrLK(previous_image_, image, from, to, status, err, window,
+  cv::calcOpticalFlowPyrLK(previous_pyramid_, pyramid, from, to, status, err, window,
                            options_.klt_levels, stop, 0, options_.klt_min_eigenvalue);
   // The backward pass starts where a consistent track must end (its origin), so it needs no
   // coarse levels: one level absorbs up to a few pixels of inconsistency, beyond which the
   // track is rejected anyway.
   back = from;
-  cv::calcOpticalFlowPyrLK(image, previous_image_, to, back, back_status, err, window,
+  cv::calcOpticalFlowPyrLK(pyramid, previous_pyramid_, to, back, back_status, err, window,
                            std::min(options_.klt_levels, 1), stop, cv::OPTFLOW_USE_INITIAL_FLOW,
                            options_.klt_min_eigenvalue);
-  const cv::Rect inside(1, 1, image.cols - 2, image.rows - 2);
+  const cv::Rect inside(1, 1, mask.cols - 2, mask.rows - 2);
   for (size_t i = 0; i < tracks_.size(); ++i) {
     if (!status[i] || !back_status[i] || !inside.contains(to[i])) continue;
     if (cv::norm(back[i] - from[i]) > options_.max_forward_backward_px) continue;
@@ -215,7 +219,7 @@ void FeatureTracker::computeUniformRegions(const cv::Mat& mask) {
 }
 
 std::vector<cv::Point2f> FeatureTracker::detectCorners(const cv::Mat& image, const cv::Mat& allowed,
-                                                       int wanted) const {
+                                                       int wanted) {
   // Shi–Tomasi corners on pyramid level `detection_level`: a corner there is a textured
   // neighbourhood of 3·2^level px, which a KLT window of 21 px tracks as well as a full-resolution
   // one, at a quarter of the cost per level.
@@ -225,9 +229,8 @@ std::vector<cv::Point2f> FeatureTracker::detectCorners(const cv::Mat& image, con
     cv::resize(level_allowed, level_allowed, level_image.size(), 0, 0, cv::INTER_NEAREST);
   }
   const double scale = std::ldexp(1.0, options_.detection_level);
-  std::vector<cv::Point2f> corners;
-  cv::goodFeaturesToTrack(level_image, corners, wanted, 0.01, options_.min_distance / scale,
-                          level_allowed);
+  std::vector<cv::Point2f> corners = detector_.detect(level_image, level_allowed, wanted, 0.01,
+                                                      std::max(1.0, options_.min_distance / scale));
   // Level pixel (x, y) is centred on base pixel (2^level x, 2^level y) (pyrDown's kernel).
   for (cv::Point2f& c : corners) c *= scale;
   return corners;
@@ -267,7 +270,7 @@ FeatureFrame FeatureTracker::publish(double t, double dt) {
 }
 
 FeatureFrame FeatureTracker::track(double t, const cv::Mat& raw_image, const cv::Mat& raw_mask) {
-  const double dt = previous_image_.empty() ? 0 : t - previous_t_;
+  const double dt = previous_pyramid_.empty() ? 0 : t - previous_t_;
   cv::Mat image = raw_image, mask = raw_mask;
   bool usable = true;
   if (image.empty() || image.type() != CV_8UC1) {
@@ -281,7 +284,7 @@ FeatureFrame FeatureTracker::track(double t, const cv::Mat& raw_image, const cv:
   if (!usable) {
     tracks_.clear();
     previous_.clear();
-    previous_image_.release();
+    previous_pyramid_.clear();
     return FeatureFrame{t, {}};
   }
   if (options_.clahe) {
@@ -293,7 +296,9 @@ FeatureFrame FeatureTracker::track(double t, const cv::Mat& raw_image, const cv:
 
   image = image.clone();  // kept as the birth image of this frame's new tracks
   computeUniformRegions(mask);
-  std::vector<Track> kept = propagate(image, mask);
+  cv::buildOpticalFlowPyramid(image, pyramid_, cv::Size(options_.klt_window, options_.klt_window),
+                              options_.klt_levels, true);
+  std::vector<Track> kept = propagate(pyramid_, mask);
   undistort(kept);
   const PlaneHomographies homographies = rejectOutliers(kept);
   if (options_.anchor_refinement) {
@@ -333,7 +338,7 @@ FeatureFrame FeatureTracker::track(double t, const cv::Mat& raw_image, const cv:
   }
   previous_ = tracks_;
   tracks_ = spaced;
-  previous_image_ = image;
+  std::swap(previous_pyramid_, pyramid_);
   previous_t_ = t;
   return publish(t, dt);
 }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "mrpt_modules/core/feature_frame.h"
+#include "mrpt_modules/frontend/corner_detector.h"
 #include "mrpt_modules/frontend/outlier_rejection.h"
 #include "rawlog_io/calibration.h"
 #include "rawlog_io/ini_file.h"
@@ -70,20 +71,24 @@ class FeatureTracker {
   using PlaneHomographies = std::map<int, cv::Matx33d>;  // plane → previous-to-current (pixels)
   void warnOnce(const std::string& message);
   void undistort(std::vector<Track>& tracks) const;
-  std::vector<Track> propagate(const cv::Mat& image, const cv::Mat& mask);
+  using Pyramid = std::vector<cv::Mat>;  // cv::buildOpticalFlowPyramid's, with derivatives
+  std::vector<Track> propagate(const Pyramid& pyramid, const cv::Mat& mask);
   void refineAgainstAnchors(std::vector<Track>& tracks, const PlaneHomographies& homographies,
                             const cv::Mat& image) const;
   PlaneHomographies rejectOutliers(std::vector<Track>& tracks) const;
   /// Where new corners may go: detectable, not `taken` by a kept track, away from the border.
   cv::Mat detectionMask(const cv::Mat& taken) const;
-  std::vector<cv::Point2f> detectCorners(const cv::Mat& image, const cv::Mat& allowed,
-                                         int wanted) const;
+  std::vector<cv::Point2f> detectCorners(const cv::Mat& image, const cv::Mat& allowed, int wanted);
   void computeUniformRegions(const cv::Mat& mask);
   FeatureFrame publish(double t, double dt);
 
   CameraIntrinsics camera_;
   TrackerOptions options_;
-  cv::Mat previous_image_;
+  // The previous image's pyramid: built once per image, used by the forward pass into the next
+  // image and the backward pass out of it. The current one is built into the buffers of the one
+  // before (swapped), so no image-sized memory is allocated per frame.
+  Pyramid previous_pyramid_, pyramid_;
+  CornerDetector detector_;
   std::vector<Track> tracks_;    // current frame
   std::vector<Track> previous_;  // previous frame (same ids where tracked)
   double previous_t_ = 0;

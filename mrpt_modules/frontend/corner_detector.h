@@ -1,0 +1,35 @@
+#pragma once
+// Shi–Tomasi corners (Shi & Tomasi 1994), the exact selection of cv::goodFeaturesToTrack (block
+// 3, Sobel aperture 3, no Harris), with its image-sized buffers kept between calls. OpenCV
+// allocates ~8 MB of temporaries per call at 640x480; freed at the top of the heap they are
+// returned to the kernel and faulted in again every frame, which cost more than the arithmetic
+// inside rpvio-slam.
+#include <opencv2/core.hpp>
+#include <vector>
+
+namespace rpvio {
+
+class CornerDetector {
+ public:
+  /// The `max_corners` strongest corners of `image` (CV_8UC1) where `allowed` (CV_8UC1, same
+  /// size) is non-zero, strongest first: 3x3 local maxima of the minimum eigenvalue above
+  /// `quality_level` times the strongest allowed one, each at least `min_distance` px from every
+  /// stronger accepted corner (min_distance >= 1). Same corners, same order as
+  /// cv::goodFeaturesToTrack(image, corners, max_corners, quality_level, min_distance, allowed).
+  std::vector<cv::Point2f> detect(const cv::Mat& image, const cv::Mat& allowed, int max_corners,
+                                  double quality_level, double min_distance);
+
+ private:
+  struct Candidate {
+    float response;
+    int index;  // y * width + x
+  };
+  void computeMinEigenvalues(const cv::Mat& image);
+  void collectLocalMaxima(const cv::Mat& allowed, float threshold);
+
+  cv::Mat dx_, dy_, covariance_, min_eigenvalue_;  // CV_32F, CV_32F, CV_32FC3, CV_32F
+  std::vector<Candidate> candidates_;
+  std::vector<std::vector<cv::Point2f>> grid_;  // accepted corners per min_distance cell
+};
+
+}  // namespace rpvio
