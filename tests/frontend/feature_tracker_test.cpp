@@ -153,6 +153,27 @@ TEST(FeatureTracker, DegradedInputGivesNoFeaturesAndOneWarning) {
   EXPECT_GT(tracker.track(0.2, img, cv::Mat(480, 640, CV_8U, cv::Scalar(1))).features.size(), 50u);
 }
 
+TEST(FeatureTracker, ImageSizeChangeRestartsTheTracks) {
+  FeatureTracker tracker(camera(), TrackerOptions{});
+  const FeatureFrame before = tracker.track(0.0, texture(4), cv::Mat(480, 640, CV_8U, 1));
+  ASSERT_GT(before.features.size(), 50u);
+  cv::Mat smaller;
+  cv::resize(texture(4), smaller, cv::Size(320, 240), 0, 0, cv::INTER_AREA);
+  const FeatureFrame after = tracker.track(0.05, smaller, cv::Mat(240, 320, CV_8U, 1));
+  ASSERT_FALSE(after.features.empty());
+  for (const auto& f : after.features) {
+    EXPECT_EQ(f.track_length, 1) << "a track carried across image sizes";
+    EXPECT_LT(f.pixel.x(), 320);
+    EXPECT_LT(f.pixel.y(), 240);
+  }
+  const auto warnings = tracker.takeWarnings();
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("image size changed"), std::string::npos);
+  // Tracking goes on at the new size.
+  const FeatureFrame next = tracker.track(0.1, smaller, cv::Mat(240, 320, CV_8U, 1));
+  EXPECT_GT(commonFeatures(after, next), after.features.size() / 2);
+}
+
 TEST(FeatureTracker, HomographyRansacDropsAPointMovingOffItsPlane) {
   const cv::Mat base = texture(4);
   const cv::Mat mask(480, 640, CV_8U, cv::Scalar(1));
