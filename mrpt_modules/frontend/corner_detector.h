@@ -4,6 +4,7 @@
 // allocates ~8 MB of temporaries per call at 640x480; freed at the top of the heap they are
 // returned to the kernel and faulted in again every frame, which cost more than the arithmetic
 // inside rpvio-slam.
+#include <array>
 #include <opencv2/core.hpp>
 #include <vector>
 
@@ -27,7 +28,8 @@ class CornerDetector {
   void computeMinEigenvalues(const cv::Mat& image);
   void collectLocalMaxima(const cv::Mat& allowed, float threshold);
 
-  cv::Mat dx_, dy_, covariance_, min_eigenvalue_;  // CV_32F, CV_32F, CV_32FC3, CV_32F
+  cv::Mat dx_, dy_, min_eigenvalue_;  // CV_32F
+  std::array<cv::Mat, 3> products_;   // CV_32F: gx², gx·gy, gy², then their 3x3 sums
   std::vector<Candidate> candidates_;
   std::vector<std::vector<cv::Point2f>> grid_;  // accepted corners per min_distance cell
 };
