@@ -4,7 +4,7 @@ JOBS ?= 2
 FUZZ_SECONDS ?= 60
 ASAN_CTEST_ARGS ?=
 
-.PHONY: deps build test demo test-asan fuzz format clean
+.PHONY: deps build test demo test-asan test-asan-quick fuzz format clean
 
 deps:
 	@scripts/install-deps.sh
@@ -22,7 +22,17 @@ demo: build
 test-asan: deps
 	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRPVIO_SANITIZE=ON
 	cmake --build build-asan -j$(JOBS)
-	cd build-asan && ctest --output-on-failure -j$(JOBS) $(ASAN_CTEST_ARGS)
+	cd build-asan && UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
+	  ctest --output-on-failure -j$(JOBS) $(ASAN_CTEST_ARGS)
+
+# What CI runs besides `make test`: the input readers, the front-end and the planes map under ASan +
+# UBSan, where any report fails its test (the whole suite under sanitizers does not fit CI's time).
+ASAN_QUICK_AREAS = rawlog_io frontend planes_map
+test-asan-quick: deps
+	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRPVIO_SANITIZE=ON
+	cmake --build build-asan -j$(JOBS) --target $(addprefix test_,$(ASAN_QUICK_AREAS))
+	cd build-asan && UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
+	  ctest --output-on-failure -j$(JOBS) -L '^($(subst $(eval) ,|,$(ASAN_QUICK_AREAS)))$$'
 
 # libFuzzer targets of tests/fuzz (clang), FUZZ_SECONDS each, one after the other, in build-fuzz.
 fuzz:
