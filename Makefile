@@ -25,9 +25,10 @@ test-asan: deps
 	cd build-asan && UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
 	  ctest --output-on-failure -j$(JOBS) $(ASAN_CTEST_ARGS)
 
-# What CI runs besides `make test`: the input readers, the front-end and the planes map under ASan +
-# UBSan, where any report fails its test (the whole suite under sanitizers does not fit CI's time).
-ASAN_QUICK_AREAS = rawlog_io frontend planes_map
+# What CI runs besides `make test`: the tests of the input readers, front-end, planes map, IMU and
+# factors under ASan + UBSan, where any report fails its test (the whole suite under sanitizers
+# does not fit CI's time).
+ASAN_QUICK_AREAS = rawlog_io frontend planes_map imu factors
 test-asan-quick: deps
 	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRPVIO_SANITIZE=ON
 	cmake --build build-asan -j$(JOBS) --target $(addprefix test_,$(ASAN_QUICK_AREAS))
