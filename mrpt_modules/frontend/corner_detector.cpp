@@ -65,61 +65,63 @@ void CornerDetector::collectLocalMaxima(const cv::Mat& allowed, float threshold)
   }
 }
 
-std::vector<cv::Point2f> CornerDetector::detect(const cv::Mat& image, const cv::Mat& allowed,
-                                                int max_corners, double quality_level,
-                                                double min_distance) {
-  CV_Assert(image.type() == CV_8UC1 && allowed.type() == CV_8UC1 &&
-            allowed.size() == image.size() && min_distance >= 1 && quality_level > 0);
-  std::vector<cv::Point2f> corners;
-  if (image.empty() || max_corners <= 0) return corners;
-  computeMinEigenvalues(image);
-  double strongest = 0;
-  cv::minMaxLoc(min_eigenvalue_, nullptr, &strongest, nullptr, nullptr, allowed);
-  if (strongest <= 0) return corners;  // a flat (or fully masked) image has no corner
-  // cv::threshold compares float images with the threshold cast to float.
-  collectLocalMaxima(allowed, static_cast<float>(strongest * quality_level));
-
+std::vector<cv::Point2f> CornerDetector::takeStrongestSpaced(cv::Size size, int max_corners,
+                                                             double min_distance) {
   // Strongest first; equal responses: the later pixel first (goodFeaturesToTrack's pointer order).
   const auto stronger = [](const Candidate& a, const Candidate& b) {
     return a.response > b.response || (a.response == b.response && a.index > b.index);
   };
+  // Accepted corners are binned in cells of side min_distance: a closer one is in a neighbour cell.
   const int cell = cvRound(min_distance);
-  const int grid_width = (image.cols + cell - 1) / cell,
-            grid_height = (image.rows + cell - 1) / cell;
+  const int grid_width = (size.width + cell - 1) / cell;
+  const int grid_height = (size.height + cell - 1) / cell;
   grid_.resize(static_cast<size_t>(grid_width) * grid_height);
   for (auto& c : grid_) c.clear();
   const double min_distance_sq = min_distance * min_distance;
+  const auto isolated = [&](int x, int y) {
+    const int cx = x / cell, cy = y / cell;
+    for (int gy = std::max(0, cy - 1); gy <= std::min(grid_height - 1, cy + 1); ++gy)
+      for (int gx = std::max(0, cx - 1); gx <= std::min(grid_width - 1, cx + 1); ++gx)
+        for (const cv::Point2f& p : grid_[static_cast<size_t>(gy) * grid_width + gx]) {
+          const float ex = static_cast<float>(x) - p.x, ey = static_cast<float>(y) - p.y;
+          if (ex * ex + ey * ey < min_distance_sq) return false;
+        }
+    return true;
+  };
+  std::vector<cv::Point2f> corners;
   // Sorted a growing chunk at a time: usually the first chunk fills max_corners.
   auto begin = candidates_.begin();
-  size_t chunk = 8 * static_cast<size_t>(max_corners);
+  auto chunk = static_cast<std::ptrdiff_t>(8) * max_corners;
   while (begin != candidates_.end() && static_cast<int>(corners.size()) < max_corners) {
-    const auto end = candidates_.end() - begin > static_cast<std::ptrdiff_t>(chunk)
-                         ? begin + static_cast<std::ptrdiff_t>(chunk)
-                         : candidates_.end();
+    const auto end = candidates_.end() - begin > chunk ? begin + chunk : candidates_.end();
     if (end != candidates_.end()) std::nth_element(begin, end, candidates_.end(), stronger);
     std::sort(begin, end, stronger);
     for (auto it = begin; it != end && static_cast<int>(corners.size()) < max_corners; ++it) {
-      const int y = it->index / image.cols, x = it->index % image.cols;
-      const int cx = x / cell, cy = y / cell;
-      bool isolated = true;
-      for (int gy = std::max(0, cy - 1); isolated && gy <= std::min(grid_height - 1, cy + 1); ++gy)
-        for (int gx = std::max(0, cx - 1); isolated && gx <= std::min(grid_width - 1, cx + 1); ++gx)
-          for (const cv::Point2f& p : grid_[static_cast<size_t>(gy) * grid_width + gx]) {
-            const float ex = static_cast<float>(x) - p.x, ey = static_cast<float>(y) - p.y;
-            if (ex * ex + ey * ey < min_distance_sq) {
-              isolated = false;
-              break;
-            }
-          }
-      if (!isolated) continue;
+      const int y = it->index / size.width, x = it->index % size.width;
+      if (!isolated(x, y)) continue;
       const cv::Point2f corner(static_cast<float>(x), static_cast<float>(y));
-      grid_[static_cast<size_t>(cy) * grid_width + cx].push_back(corner);
+      grid_[static_cast<size_t>(y / cell) * grid_width + x / cell].push_back(corner);
       corners.push_back(corner);
     }
     begin = end;
     chunk *= 2;
   }
   return corners;
+}
+
+std::vector<cv::Point2f> CornerDetector::detect(const cv::Mat& image, const cv::Mat& allowed,
+                                                int max_corners, double quality_level,
+                                                double min_distance) {
+  CV_Assert(image.type() == CV_8UC1 && allowed.type() == CV_8UC1 &&
+            allowed.size() == image.size() && min_distance >= 1 && quality_level > 0);
+  if (image.empty() || max_corners <= 0) return {};
+  computeMinEigenvalues(image);
+  double strongest = 0;
+  cv::minMaxLoc(min_eigenvalue_, nullptr, &strongest, nullptr, nullptr, allowed);
+  if (strongest <= 0) return {};  // a flat (or fully masked) image has no corner
+  // cv::threshold compares float images with the threshold cast to float.
+  collectLocalMaxima(allowed, static_cast<float>(strongest * quality_level));
+  return takeStrongestSpaced(image.size(), max_corners, min_distance);
 }
 
 }  // namespace rpvio

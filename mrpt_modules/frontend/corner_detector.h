@@ -27,6 +27,8 @@ class CornerDetector {
   };
   void computeMinEigenvalues(const cv::Mat& image);
   void collectLocalMaxima(const cv::Mat& allowed, float threshold);
+  /// Greedy over the candidates, strongest first: keeps those min_distance from every kept one.
+  std::vector<cv::Point2f> takeStrongestSpaced(cv::Size size, int max_corners, double min_distance);
 
   cv::Mat dx_, dy_, min_eigenvalue_;  // CV_32F
   std::array<cv::Mat, 3> products_;   // CV_32F: gx², gx·gy, gy², then their 3x3 sums
