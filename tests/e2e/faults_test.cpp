@@ -5,10 +5,10 @@
 //    stretch without planes is one: the IMU alone carries the state for up to max_blind_s (2.5 s).
 //  - kResets (long faults, 4 s without features): a reset with its cause is reported and
 //    tracking resumes (re-initialization) within 5 s of the fault's end.
-//  - kDegrades: the run finishes cleanly; the accuracy is printed. Not reached yet: with an
-//    unknown 30 ms camera-IMU offset rpvio-single ends at 0.40 m, 9x the fault-free 0.044 m (no
-//    time-offset estimation: the offset times the take-off's jerk scales the initial estimate by
-//    6%).
+//  - kDegrades: tracking continues to the end without a reset and does not diverge (ATE < 1 m),
+//    but the 2x of kContinues is not reached yet: with an unknown 30 ms camera-IMU offset
+//    rpvio-single ends at 0.40 m, 9x the fault-free 0.044 m (no time-offset estimation: the offset
+//    times the take-off's jerk scales the initial estimate by 6%).
 #include <gtest/gtest.h>
 #include <sys/file.h>
 
@@ -110,12 +110,11 @@ TEST_P(FaultRun, KeepsWorkingAndSaysWhatHappened) {
   const double resets = test::jsonNumber(r.summary, "resets");
   std::printf("%s: ATE %.3f m (fault-free %.3f m), %zu poses, %g resets\n", f.name, r.ate,
               reference, r.trajectory.size(), resets);
-  if (f.expect == Expect::kDegrades) return;
   ASSERT_FALSE(r.trajectory.empty());
-  if (f.expect == Expect::kContinues) {
+  if (f.expect != Expect::kResets) {
     EXPECT_EQ(resets, 0) << r.summary;
     EXPECT_NEAR(r.trajectory.back().t, 16.0, 0.06) << "tracking at the end of the sequence";
-    EXPECT_LT(r.ate, 2 * reference);
+    EXPECT_LT(r.ate, f.expect == Expect::kContinues ? 2 * reference : 1.0);
     return;
   }
   EXPECT_GE(resets, 1) << r.summary;
