@@ -19,21 +19,23 @@ test: build
 demo: build
 	@scripts/demo.sh $(BUILD_DIR)
 
+# ASan + UBSan tree; a UBSan report fails its test as an ASan one does.
+ASAN_CONFIGURE = cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRPVIO_SANITIZE=ON
+ASAN_CTEST = cd build-asan && UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
+	ctest --output-on-failure -j$(JOBS)
+
 test-asan: deps
-	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRPVIO_SANITIZE=ON
+	$(ASAN_CONFIGURE)
 	cmake --build build-asan -j$(JOBS)
-	cd build-asan && UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
-	  ctest --output-on-failure -j$(JOBS) $(ASAN_CTEST_ARGS)
+	$(ASAN_CTEST) $(ASAN_CTEST_ARGS)
 
 # What CI runs besides `make test`: the tests of the input readers, front-end, planes map, IMU and
-# factors under ASan + UBSan, where any report fails its test (the whole suite under sanitizers
-# does not fit CI's time).
+# factors under ASan + UBSan (the whole suite under sanitizers does not fit CI's time).
 ASAN_QUICK_AREAS = rawlog_io frontend planes_map imu factors
 test-asan-quick: deps
-	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRPVIO_SANITIZE=ON
+	$(ASAN_CONFIGURE)
 	cmake --build build-asan -j$(JOBS) --target $(addprefix test_,$(ASAN_QUICK_AREAS))
-	cd build-asan && UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
-	  ctest --output-on-failure -j$(JOBS) -L '^($(subst $(eval) ,|,$(ASAN_QUICK_AREAS)))$$'
+	$(ASAN_CTEST) -L '^($(subst $(eval) ,|,$(ASAN_QUICK_AREAS)))$$'
 
 # libFuzzer targets of tests/fuzz (clang), FUZZ_SECONDS each, one after the other, in build-fuzz.
 fuzz:

@@ -45,8 +45,8 @@ void CornerDetector::computeMinEigenvalues(const cv::Mat& image) {
 
 void CornerDetector::collectLocalMaxima(const cv::Mat& allowed, float threshold) {
   // goodFeaturesToTrack zeroes responses <= threshold, then keeps allowed non-zero pixels equal to
-  // their 3x3 dilation (image border rows and columns excluded): a response above the threshold
-  // that no neighbour exceeds (a zeroed neighbour never does).
+  // their 3x3 dilation (image border rows and columns excluded): with a positive threshold (see
+  // detect), a response above it that no neighbour exceeds (a zeroed neighbour never does).
   candidates_.clear();
   const int width = min_eigenvalue_.cols;
   for (int y = 1; y + 1 < min_eigenvalue_.rows; ++y) {
@@ -56,7 +56,7 @@ void CornerDetector::collectLocalMaxima(const cv::Mat& allowed, float threshold)
     const float* below = min_eigenvalue_.ptr<float>(y + 1);
     for (int x = 1; x + 1 < width; ++x) {
       const float v = row[x];
-      if (!ok[x] || !(v > threshold) || v == 0) continue;
+      if (!ok[x] || !(v > threshold)) continue;
       if (v < row[x - 1] || v < row[x + 1] || v < above[x - 1] || v < above[x] ||
           v < above[x + 1] || v < below[x - 1] || v < below[x] || v < below[x + 1])
         continue;
