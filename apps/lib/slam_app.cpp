@@ -146,7 +146,10 @@ int slamMain(int argc, char** argv) {
     const double sequence_s = rows.size() < 2 ? 0 : rows.back().t - rows.front().t;
     writeFileAtomically(path("summary.json"), [&](std::ostream& s) {
       s << "{\n  \"frames\": " << rows.size() << ",\n  \"poses\": " << trajectory.size()
-        << ",\n  \"initialized_at\": " << (estimator ? estimator->initializedAt() : -1);
+        << ",\n  \"initialized_at\": " << (estimator ? estimator->initializedAt() : -1)
+        << ",\n  \"time_offset_s\": " << (estimator ? estimator->estimator().timeOffset() : 0)
+        << ",\n  \"time_offset_note\": "
+        << jsonString(estimator ? estimator->estimator().timeOffsetNote() : "");
       s << ",\n  \"resets\": " << (estimator ? estimator->estimator().resets() : 0)
         << ",\n  \"reset_causes\": [";
       if (estimator) {

@@ -66,6 +66,9 @@ void SlidingWindowEstimatorModule::initialize(const IniFile& ini, const std::str
   o.reinit_max_relative_scale_sigma =
       ini.numberOr(s, "reinit_max_scale_sigma", o.reinit_max_relative_scale_sigma);
   o.max_reconnect_s = ini.numberOr(s, "max_reconnect_s", o.max_reconnect_s);
+  o.estimate_time_offset = ini.flagOr(s, "estimate_time_offset", o.estimate_time_offset);
+  o.min_time_offset_s = ini.numberOr(s, "min_time_offset_s", o.min_time_offset_s);
+  o.max_time_offset_s = ini.numberOr(s, "max_time_offset_s", o.max_time_offset_s);
   o.init.min_window_s = ini.numberOr(s, "init_window_s", o.init.min_window_s);
   o.init.min_parallax_px = ini.numberOr(s, "init_parallax_px", o.init.min_parallax_px);
   o.init.virtual_focal = o.virtual_focal;
@@ -74,7 +77,6 @@ void SlidingWindowEstimatorModule::initialize(const IniFile& ini, const std::str
   if (o.window_size < 3)
     throw InputError(ini.path(), "[" + s + "]", "window_size must be at least 3");
   estimator_ = std::make_unique<SlidingWindowEstimator>(context.calibration, o);
-  time_offset_ = context.calibration.time_offset;
   bus_ = &context.bus;
   context.bus.subscribeSensor(labels::kImu, [this](const auto& m) { onImu(m); });
   context.bus.subscribe<FeatureFrame>([this](const FeatureFrame& f) { onFrame(f); });
@@ -83,26 +85,47 @@ void SlidingWindowEstimatorModule::initialize(const IniFile& ini, const std::str
 }
 
 void SlidingWindowEstimatorModule::finish() {
+  while (!pending_.empty()) processOldestPending();
   if (estimator_->initialized()) estimator_->flushPlanes();
 }
 
 void SlidingWindowEstimatorModule::onImu(const ObservationMessage& m) {
   imu_.push_back(
       toImuSample(dynamic_cast<const mrpt::obs::CObservationIMU&>(*m.observation), *m.reader));
+  processReadyFrames();
 }
 
 void SlidingWindowEstimatorModule::onFrame(const FeatureFrame& camera_frame) {
-  FeatureFrame frame = camera_frame;
-  frame.t += time_offset_;  // IMU clock
+  pending_.push_back(camera_frame);
+  processReadyFrames();
+}
+
+void SlidingWindowEstimatorModule::processReadyFrames() {
+  // A frame waits until the IMU has reached its time on the IMU clock (a positive offset puts
+  // the samples it needs after it in the rawlog).
+  while (!pending_.empty() && !imu_.empty() &&
+         imu_.back().t >= pending_.front().t + estimator_->timeOffset())
+    processOldestPending();
+}
+
+void SlidingWindowEstimatorModule::processOldestPending() {
+  FeatureFrame frame = std::move(pending_.front());
+  pending_.pop_front();
+  const double offset = estimator_->timeOffset();
+  frame.t += offset;  // IMU clock
   // Samples since the previous frame, starting with the last one at or before it.
   std::vector<ImuSample> samples;
   while (imu_.size() > 1 && imu_[1].t <= previous_frame_t_) imu_.pop_front();
   for (const auto& s : imu_)
     if (s.t <= frame.t) samples.push_back(s);
   if (previous_frame_t_ < 0) samples.clear();
-  previous_frame_t_ = frame.t;
-
   const auto state = estimator_->addFrame(frame, samples);
+  // The estimator may have corrected the offset on this frame: the frame's time moved with it.
+  previous_frame_t_ = frame.t + (estimator_->timeOffset() - offset);
+  if (!estimator_->timeOffsetNote().empty() && !time_offset_reported_) {
+    time_offset_reported_ = true;
+    MRPT_LOG_INFO_STREAM("t=" << frame.t << " s: " << estimator_->timeOffsetNote());
+  }
   timings_.push_back({frame.t, estimator_->lastReport()});
   if (estimator_->status() != last_status_) {
     last_status_ = estimator_->status();

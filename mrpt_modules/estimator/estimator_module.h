@@ -1,7 +1,9 @@
 #pragma once
 // Pipeline module around SlidingWindowEstimator: buffers the IMU observations, and for every
 // FeatureFrame hands the estimator the IMU samples since the previous frame (camera time moved to
-// the IMU clock by the calibration's time offset). Publishes a StateEstimate per frame once
+// the IMU clock by the time offset: the calibration's, corrected by the estimator's estimate). A
+// frame waits until the IMU stream has reached its time; at the end, the waiting frames are
+// processed with the samples there are. Publishes a StateEstimate per frame once
 // initialized; says once per change why it is not (yet) tracking. Options: section
 // [SlidingWindowEstimatorModule] (see EstimatorOptions).
 #include <deque>
@@ -32,15 +34,18 @@ class SlidingWindowEstimatorModule : public Module {
  private:
   void onImu(const ObservationMessage& message);
   void onFrame(const FeatureFrame& frame);
+  void processReadyFrames();
+  void processOldestPending();
 
   std::unique_ptr<SlidingWindowEstimator> estimator_;
   const Bus* bus_ = nullptr;
-  double time_offset_ = 0;
+  std::deque<FeatureFrame> pending_;  // frames waiting for the IMU to reach their time
   std::deque<ImuSample> imu_;
   double previous_frame_t_ = -1;
   std::string last_status_;
   std::vector<FrameTiming> timings_;
   double initialized_at_ = -1;
+  bool time_offset_reported_ = false;
 };
 
 /// Registers the estimator module classes with MRPT RTTI.

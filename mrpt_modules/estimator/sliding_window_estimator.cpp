@@ -12,6 +12,7 @@
 #include "mrpt_modules/factors/pose_manifold.h"
 #include "mrpt_modules/factors/reprojection_factor.h"
 #include "mrpt_modules/frontend/feature_tracker.h"
+#include "mrpt_modules/initialization/time_offset.h"
 
 namespace rpvio {
 namespace {
@@ -71,6 +72,7 @@ SlidingWindowEstimator::SlidingWindowEstimator(const Calibration& calibration,
   const Eigen::Vector3d t = calib_.T_BC.translation();
   const double m[7] = {t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w()};
   std::copy(m, m + 7, mount_);
+  time_offset_ = calib_.time_offset;
 }
 
 SlidingWindowEstimator::ImuDefects SlidingWindowEstimator::imuDefects(
@@ -218,6 +220,7 @@ void SlidingWindowEstimator::optimize() {
   problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(problem_options);
   PoseManifold pose_manifold;
+  TiltOnlyPoseManifold gauge_manifold;
   ceres::SphereManifold<3> sphere;
   ceres::CauchyLoss loss(options_.cauchy_scale);
   problem.AddParameterBlock(mount_, 7, &pose_manifold);
@@ -259,7 +262,13 @@ void SlidingWindowEstimator::optimize() {
   for (int plane : planes_with_factors) problem.SetManifold(planes_[plane].normal, &sphere);
   report_.planes = planes_with_factors.size();
   if (prior_) problem.AddResidualBlock(new MarginalizationFactor(prior_), nullptr, prior_->blocks);
-  if (!prior_) problem.SetParameterBlockConstant(window_.front()->pose);  // gauge before a prior
+  // Gauge: the window cannot observe its yaw and position, so the oldest frame keeps them (its
+  // whole pose before a prior exists). Left free, each solve moved the window along them by what
+  // the prior's linearization lends them (degrees of yaw within a second on the simulator).
+  if (prior_)
+    problem.SetManifold(window_.front()->pose, &gauge_manifold);
+  else
+    problem.SetParameterBlockConstant(window_.front()->pose);
 
   ceres::Solver::Options solver;
   solver.trust_region_strategy_type = ceres::DOGLEG;
@@ -390,6 +399,51 @@ void SlidingWindowEstimator::flushPlanes() {
   }
 }
 
+double SlidingWindowEstimator::significantTimeOffset(const InitializationResult& init) {
+  time_offset_estimated_ = true;
+  std::vector<double> t;
+  std::vector<Eigen::Matrix3d> R;
+  std::vector<ImuSample> samples;
+  for (size_t k = 0; k < init_buffer_.size(); ++k) {
+    t.push_back(init_buffer_[k].first.t);
+    R.push_back(init.T_w_b[k].linear());
+    appendSamples(samples, init_buffer_[k].second);
+  }
+  std::string why;
+  const auto e = estimateTimeOffset(t, R, samples, init.bg, options_.max_time_offset_s, &why);
+  if (!e) {
+    time_offset_note_ = "time offset not estimated: " + why;
+    return 0;
+  }
+  const bool significant =
+      std::abs(e->td) >= options_.min_time_offset_s && std::abs(e->td) > 3 * e->sigma;
+  char text[160];
+  std::snprintf(text, sizeof text,
+                "time offset %+.1f ms (sigma %.1f ms, %zu frames, fit %.4f deg)%s", 1e3 * e->td,
+                1e3 * e->sigma, e->frames, e->rms_deg, significant ? "" : ": not applied");
+  time_offset_note_ = text;
+  return significant ? e->td : 0;
+}
+
+void SlidingWindowEstimator::moveInitBuffer(double dt) {
+  time_offset_ += dt;
+  std::vector<ImuSample> samples;
+  for (auto& [frame, imu] : init_buffer_) {
+    frame.t += dt;
+    appendSamples(samples, imu);
+  }
+  // Each frame's samples dealt out again: from the last one at or before the previous frame.
+  for (size_t k = 0; k < init_buffer_.size(); ++k) {
+    const double from = k == 0 ? -INFINITY : init_buffer_[k - 1].first.t;
+    std::vector<ImuSample>& imu = init_buffer_[k].second;
+    imu.clear();
+    for (size_t j = 0; j < samples.size(); ++j)
+      if (samples[j].t <= init_buffer_[k].first.t &&
+          (samples[j].t > from || (j + 1 < samples.size() && samples[j + 1].t > from)))
+        imu.push_back(samples[j]);
+  }
+}
+
 void SlidingWindowEstimator::tryInitialize() {
   std::vector<FeatureFrame> frames;
   std::vector<std::shared_ptr<ImuPreintegration>> imu;
@@ -415,6 +469,24 @@ void SlidingWindowEstimator::tryInitialize() {
   status_ = init.ok() ? "tracking" : toString(init.status);
   status_detail_ = init.reason;
   if (!init.ok()) return;
+  if (options_.estimate_time_offset && !time_offset_estimated_) {
+    // A significant camera-IMU offset: the same window again, on the corrected frame times; kept
+    // only if it initializes there.
+    if (const double td = significantTimeOffset(init); td != 0) {
+      const auto original = init_buffer_;
+      moveInitBuffer(td);
+      tryInitialize();
+      if (initialized_) {
+        time_offset_note_ += ": frame times corrected";
+        return;
+      }
+      init_buffer_ = original;
+      time_offset_ -= td;
+      time_offset_note_ += ": not applied (no initialization on the corrected times)";
+      status_ = "tracking";
+      status_detail_ = init.reason;
+    }
+  }
   // Keyframes: evenly spaced over the initialization window, ending at its newest frame.
   const size_t n = frames.size();
   const size_t step =
@@ -506,6 +578,11 @@ void SlidingWindowEstimator::reconnect() {
   const Eigen::Quaterniond yaw(
       Eigen::AngleAxisd(std::atan2(M(1, 0), M(0, 0)), Eigen::Vector3d::UnitZ()));
   const Eigen::Vector3d shift = posePosition(to.pose) - yaw * posePosition(first.pose);
+  moveWindow(yaw, shift);
+}
+
+void SlidingWindowEstimator::moveWindow(const Eigen::Quaterniond& yaw,
+                                        const Eigen::Vector3d& shift) {
   for (auto& f : window_) {
     const Eigen::Vector3d p = yaw * posePosition(f->pose) + shift;
     const Eigen::Quaterniond q = (yaw * poseRotation(f->pose)).normalized();
@@ -561,7 +638,7 @@ std::optional<StateEstimate> SlidingWindowEstimator::addFrame(
     if (!initialized_) return std::nullopt;
     report_.state = "tracking";
     StateEstimate s;
-    s.t = frame.t;
+    s.t = window_.back()->features.t;  // corrected if the time offset was
     std::copy(window_.back()->pose, window_.back()->pose + 7, s.pose);
     s.keyframe = true;
     return s;

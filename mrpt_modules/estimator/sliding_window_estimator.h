@@ -83,6 +83,13 @@ struct EstimatorOptions {
   // when the reset was at most this long ago (else the trajectory continues in a new world).
   double max_reconnect_s = 20;
   size_t init_window_frames = 41;  // frames kept while initializing (2 s at 20 Hz)
+  // Camera-IMU time offset, estimated once from the first initialization window's rotations
+  // (time_offset.h), searched within ±max_time_offset_s. When at least min_time_offset_s and 3
+  // sigma, the window is initialized again on the corrected frame times, and the correction kept
+  // if that succeeds.
+  bool estimate_time_offset = true;
+  double min_time_offset_s = 0.005;
+  double max_time_offset_s = 0.05;
   InitializerOptions init;
   PlanesMapOptions planes_map;
 };
@@ -126,6 +133,10 @@ class SlidingWindowEstimator {
   const FrameReport& lastReport() const { return report_; }
   const PlaneEstimates& planes() const { return planes_; }
   const PlanesMap& planesMap() const { return planes_map_; }
+  /// t_imu = t_frame + timeOffset(): the calibration's offset plus the estimated correction.
+  double timeOffset() const { return time_offset_; }
+  /// What the time-offset estimation found ("" before it ran).
+  const std::string& timeOffsetNote() const { return time_offset_note_; }
   /// Writes the window's current planes into the map (also done as keyframes leave the window).
   void flushPlanes();
 
@@ -140,9 +151,15 @@ class SlidingWindowEstimator {
   };
 
   void tryInitialize();
+  /// The time offset estimated on the initialized window when significant, else 0 (once).
+  double significantTimeOffset(const InitializationResult& init);
+  /// Moves the buffered frames (and the offset) by dt and deals their IMU samples out again.
+  void moveInitBuffer(double dt);
   /// Moves a re-initialized window (and its planes) into the world of the last good state by the
   /// yaw and translation that put its first keyframe on the IMU's dead reckoning.
   void reconnect();
+  /// X ↦ yaw X + shift for every window state and plane (the directions VIO cannot observe).
+  void moveWindow(const Eigen::Quaterniond& yaw, const Eigen::Vector3d& shift);
   struct ImuDefects {
     bool gap = false;  // a step longer than max_imu_step_s
     bool accel_saturated = false, gyro_saturated = false;
@@ -189,6 +206,9 @@ class SlidingWindowEstimator {
   std::set<int> used_planes_;  // mask ids whose features (and homographies) are in use
   PlanesMap planes_map_;
   double last_seen_features_t_ = 0;
+  double time_offset_ = 0;
+  bool time_offset_estimated_ = false;
+  std::string time_offset_note_;
   double first_geometry_failure_t_ = -1;  // of the configured initializer (for the fallback)
   struct GoodState {
     double t = 0;

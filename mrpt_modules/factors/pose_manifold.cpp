@@ -45,4 +45,46 @@ bool PoseManifold::MinusJacobian(const double* x, double* jacobian) const {
   return true;
 }
 
+namespace {
+
+/// d(Exp(δ) ⊗ q)/dδ at δ = 0 for world-frame δ, in (x, y, z, w) order: ½ [w I − [v]× ; −vᵀ].
+Eigen::Matrix<double, 4, 3> leftPerturbationJacobian(const Eigen::Quaterniond& q) {
+  Eigen::Matrix<double, 4, 3> J;
+  J.topRows<3>() = 0.5 * (q.w() * Eigen::Matrix3d::Identity() - hat(q.vec()));
+  J.bottomRows<1>() = -0.5 * q.vec().transpose();
+  return J;
+}
+
+}  // namespace
+
+bool TiltOnlyPoseManifold::Plus(const double* x, const double* delta, double* out) const {
+  const Eigen::Quaterniond q =
+      (expQuaternion(Eigen::Vector3d(delta[0], delta[1], 0)) * poseRotation(x)).normalized();
+  for (int i = 0; i < 3; ++i) out[i] = x[i];
+  out[3] = q.x(), out[4] = q.y(), out[5] = q.z(), out[6] = q.w();
+  return true;
+}
+
+bool TiltOnlyPoseManifold::PlusJacobian(const double* x, double* jacobian) const {
+  Eigen::Map<Eigen::Matrix<double, 7, 2, Eigen::RowMajor>> J(jacobian);
+  J.setZero();
+  J.bottomRows<4>() = leftPerturbationJacobian(poseRotation(x)).leftCols<2>();
+  return true;
+}
+
+bool TiltOnlyPoseManifold::Minus(const double* y, const double* x, double* out) const {
+  const Eigen::AngleAxisd d(poseRotation(y) * poseRotation(x).inverse());
+  const Eigen::Vector3d w = d.angle() * d.axis();
+  out[0] = w.x(), out[1] = w.y();
+  return true;
+}
+
+bool TiltOnlyPoseManifold::MinusJacobian(const double* x, double* jacobian) const {
+  // The Plus Jacobian's columns are orthogonal with norm ½: its pseudo-inverse is 4 Jᵀ.
+  Eigen::Map<Eigen::Matrix<double, 2, 7, Eigen::RowMajor>> J(jacobian);
+  J.setZero();
+  J.rightCols<4>() = 4 * leftPerturbationJacobian(poseRotation(x)).leftCols<2>().transpose();
+  return true;
+}
+
 }  // namespace rpvio

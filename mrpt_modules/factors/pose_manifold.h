@@ -18,6 +18,19 @@ class PoseManifold : public ceres::Manifold {
   bool MinusJacobian(const double* x, double* jacobian) const override;
 };
 
+/// A pose whose position and yaw are held (the gauge of a visual-inertial window, which cannot
+/// observe them): only its tilt moves, q ↦ Exp([δ₀, δ₁, 0]) ⊗ q (left perturbation about the
+/// world's horizontal axes), p fixed.
+class TiltOnlyPoseManifold : public ceres::Manifold {
+ public:
+  int AmbientSize() const override { return 7; }
+  int TangentSize() const override { return 2; }
+  bool Plus(const double* x, const double* delta, double* x_plus_delta) const override;
+  bool PlusJacobian(const double* x, double* jacobian) const override;
+  bool Minus(const double* y, const double* x, double* y_minus_x) const override;
+  bool MinusJacobian(const double* x, double* jacobian) const override;
+};
+
 /// d(ambient)/d(tangent) at `pose` (7x6).
 Eigen::Matrix<double, 7, 6> posePlusJacobian(const double* pose);
 
