@@ -53,18 +53,33 @@ bool PlanesMap::compatible(const Plane& plane, const Eigen::Vector3d& n, double 
   return gapBetween(plane.support, points) <= options_.max_gap_m;
 }
 
-void PlanesMap::fuse(Plane& plane, const PlaneObservation& obs) const {
-  // Information-weighted mean of (n, d) (covariances as given, inverted), n renormalized.
-  const Eigen::Matrix4d info_a = plane.covariance.inverse(), info_b = obs.covariance.inverse();
+namespace {
+
+/// Information-weighted mean of two (n, d) estimates (covariances as given, inverted), n
+/// renormalized; the fused covariance.
+void fuseEstimates(Eigen::Vector3d& n, double& d, Eigen::Matrix4d& covariance,
+                   const Eigen::Vector3d& n_b, double d_b, const Eigen::Matrix4d& covariance_b) {
+  const Eigen::Matrix4d info_a = covariance.inverse(), info_b = covariance_b.inverse();
   Eigen::Vector4d a, b;
-  a << plane.normal, plane.distance;
-  b << obs.normal, obs.distance;
+  a << n, d;
+  b << n_b, d_b;
   const Eigen::Matrix4d info = info_a + info_b;
   const Eigen::Vector4d fused = info.ldlt().solve(info_a * a + info_b * b);
   const double norm = fused.head<3>().norm();
-  plane.normal = fused.head<3>() / norm;
-  plane.distance = fused(3) / norm;
-  plane.covariance = info.inverse();
+  n = fused.head<3>() / norm;
+  d = fused(3) / norm;
+  covariance = info.inverse();
+}
+
+}  // namespace
+
+void PlanesMap::fuse(Plane& plane, const PlaneObservation& obs) const {
+  fuseEstimates(plane.normal, plane.distance, plane.covariance, obs.normal, obs.distance,
+                obs.covariance);
+  record(plane, obs);
+}
+
+void PlanesMap::record(Plane& plane, const PlaneObservation& obs) const {
   plane.support.insert(plane.support.end(), obs.points.begin(), obs.points.end());
   plane.decimateSupport(options_.voxel_size_m, options_.max_support_points);
   plane.updatePolygon();
@@ -103,9 +118,26 @@ int PlanesMap::update(const PlaneObservation& obs) {
     p.mask_ids.insert(obs.mask_id);
     planes_.push_back(p);
     mask_to_plane_[obs.mask_id] = p.id;
+    if (obs.visit != 0) visit_start_[p.id] = {obs.visit, false};
     return p.id;
   }
-  fuse(*target, obs);
+  if (obs.visit == 0) {
+    fuse(*target, obs);
+  } else {
+    // Same visit: the observation replaces the visit's previous one, fused with what the map
+    // knew before the visit.
+    VisitStart& start = visit_start_[target->id];
+    if (start.visit != obs.visit)
+      start = {obs.visit, true, target->normal, target->distance, target->covariance};
+    Plane& p = *target;
+    p.normal = obs.normal.normalized();
+    p.distance = obs.distance;
+    p.covariance = obs.covariance;
+    if (start.known)
+      fuseEstimates(p.normal, p.distance, p.covariance, start.normal, start.distance,
+                    start.covariance);
+    record(p, obs);
+  }
   mask_to_plane_[obs.mask_id] = target->id;
   return target->id;
 }
@@ -128,6 +160,7 @@ size_t PlanesMap::mergeDuplicates() {
       keep.mask_ids.insert(other.mask_ids.begin(), other.mask_ids.end());
       for (auto& [mask, id] : mask_to_plane_)
         if (id == other.id) id = keep.id;
+      visit_start_.erase(other.id);
       planes_.erase(planes_.begin() + static_cast<long>(j));
       ++merged;
     }

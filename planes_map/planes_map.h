@@ -34,6 +34,10 @@ struct PlaneObservation {
   Eigen::Matrix4d covariance = Eigen::Matrix4d::Identity() * 1e-2;
   std::vector<Eigen::Vector3d> points;  // world points of its features
   double time = 0;
+  // Estimates of one visit (the plane's stay in the estimator's window, which keeps what it
+  // learnt of the plane) replace each other: the newest knows all the earlier ones did. Different
+  // visits are fused. 0: every observation is independent.
+  uint64_t visit = 0;
 };
 
 class PlanesMap {
@@ -57,9 +61,22 @@ class PlanesMap {
   /// `same_label`, supports no farther apart than max_gap_m.
   bool compatible(const Plane& plane, const Eigen::Vector3d& n, double d,
                   const std::vector<Eigen::Vector3d>& points, bool same_label = false) const;
+  /// Fuses the observation's (n, d) into the plane's and records it (record()).
   void fuse(Plane& plane, const PlaneObservation& observation) const;
+  /// Support points, extent, counts, times and mask label of an observation.
+  void record(Plane& plane, const PlaneObservation& observation) const;
+
+  /// A plane's (n, d) and covariance before the visit under way.
+  struct VisitStart {
+    uint64_t visit = 0;
+    bool known = false;  // false: the plane was new in this visit
+    Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+    double distance = 0;
+    Eigen::Matrix4d covariance = Eigen::Matrix4d::Identity();
+  };
 
   PlanesMapOptions options_;
+  std::map<int, VisitStart> visit_start_;  // by plane id
   std::vector<Plane> planes_;
   std::map<int, int> mask_to_plane_;
   int next_id_ = 1;

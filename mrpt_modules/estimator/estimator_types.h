@@ -1,5 +1,6 @@
 #pragma once
 // Plane states of the sliding-window estimator.
+#include <cstdint>
 #include <map>
 
 namespace rpvio {
@@ -8,6 +9,7 @@ namespace rpvio {
 struct PlaneEstimate {
   double normal[3] = {0, 0, 1};
   double distance[1] = {0};
+  uint64_t visit = 0;  // its stay in the window (PlaneObservation::visit)
 };
 
 using PlaneEstimates = std::map<int, PlaneEstimate>;

@@ -156,6 +156,11 @@ CameraPoseLookup SlidingWindowEstimator::cameraLookup() const {
   return [this](uint64_t id) { return camera(id); };
 }
 
+PlaneEstimate* SlidingWindowEstimator::homographyPlane(const FeatureTrack& track) {
+  const auto plane = planes_.find(track.plane_id);
+  return used_planes_.count(track.plane_id) && plane != planes_.end() ? &plane->second : nullptr;
+}
+
 bool SlidingWindowEstimator::inUse(const FeatureTrack& track) const {
   return track.triangulated && track.observations.size() >= 2;
 }
@@ -190,6 +195,7 @@ void SlidingWindowEstimator::initializePlanes() {
       PlaneEstimate e;
       for (int i = 0; i < 3; ++i) e.normal[i] = known->normal[i];
       e.distance[0] = known->distance;
+      e.visit = ++plane_visits_;
       planes_[plane] = e;
       continue;
     }
@@ -210,6 +216,7 @@ void SlidingWindowEstimator::initializePlanes() {
     PlaneEstimate e;
     for (int i = 0; i < 3; ++i) e.normal[i] = n[i];
     e.distance[0] = n.dot(mean);
+    e.visit = ++plane_visits_;
     planes_[plane] = e;
   }
 }
@@ -243,25 +250,24 @@ void SlidingWindowEstimator::optimize() {
   for (auto& [id, track] : features_.tracks()) {
     if (!inUse(track)) continue;
     const TrackObservation& anchor = track.observations.front();
-    const auto plane = planes_.find(track.plane_id);
-    const bool homography = used_planes_.count(track.plane_id) && plane != planes_.end();
+    PlaneEstimate* plane = homographyPlane(track);
     for (size_t k = 1; k < track.observations.size(); ++k) {
       const TrackObservation& o = track.observations[k];
       problem.AddResidualBlock(
           ReprojectionResidual::create(anchor.normalized, o.normalized, weight), &loss,
           pose_of[anchor.frame], pose_of[o.frame], mount_, track.inv_depth);
-      if (homography)
+      if (plane)
         problem.AddResidualBlock(
             HomographyResidual::create(anchor.normalized, o.normalized, weight), &loss,
-            pose_of[anchor.frame], pose_of[o.frame], mount_, plane->second.normal,
-            plane->second.distance);
+            pose_of[anchor.frame], pose_of[o.frame], mount_, plane->normal, plane->distance);
     }
-    if (homography) planes_with_factors.insert(track.plane_id);
+    if (plane) planes_with_factors.insert(track.plane_id);
     if (track.observations.back().frame == newest) ++report_.features;
   }
-  for (int plane : planes_with_factors) problem.SetManifold(planes_[plane].normal, &sphere);
   report_.planes = planes_with_factors.size();
   if (prior_) problem.AddResidualBlock(new MarginalizationFactor(prior_), nullptr, prior_->blocks);
+  for (auto& [mask, e] : planes_)
+    if (problem.HasParameterBlock(e.normal)) problem.SetManifold(e.normal, &sphere);
   // Gauge: the window cannot observe its yaw and position, so the oldest frame keeps them (its
   // whole pose before a prior exists). Left free, each solve moved the window along them by what
   // the prior's linearization lends them (degrees of yaw within a second on the simulator).
@@ -341,11 +347,18 @@ void SlidingWindowEstimator::marginalizeOldest() {
   for (auto& [id, track] : features_.tracks()) {
     if (!inUse(track) || track.observations.front().frame != oldest.id) continue;
     const TrackObservation& anchor = track.observations.front();
+    PlaneEstimate* plane = homographyPlane(track);
     for (size_t k = 1; k < track.observations.size(); ++k) {
       const TrackObservation& o = track.observations[k];
       marginalizer.addFactor(std::unique_ptr<ceres::CostFunction>(ReprojectionResidual::create(
                                  anchor.normalized, o.normalized, weight)),
                              loss, {oldest.pose, pose_of[o.frame], mount_, track.inv_depth});
+      // The plane stays a state: what this keyframe's homographies knew of it stays in the prior.
+      if (plane)
+        marginalizer.addFactor(
+            std::unique_ptr<ceres::CostFunction>(
+                HomographyResidual::create(anchor.normalized, o.normalized, weight)),
+            loss, {oldest.pose, pose_of[o.frame], mount_, plane->normal, plane->distance});
     }
     remove.insert(track.inv_depth);
   }
@@ -355,9 +368,23 @@ void SlidingWindowEstimator::marginalizeOldest() {
   window_.pop_front();
   window_.front()->imu_from_previous = nullptr;
   window_.front()->imu.clear();
-  // Planes no longer seen live on in the map only.
+  forgetUnseenPlanes();
+}
+
+void SlidingWindowEstimator::forgetUnseenPlanes() {
+  // Planes no longer seen live on in the map only: marginalized out of the prior, then dropped.
   std::set<int> seen;
   for (const auto& [id, track] : features_.tracks()) seen.insert(track.plane_id);
+  std::set<const double*> gone;
+  for (auto& [mask, e] : planes_)
+    if (!seen.count(mask) && prior_ && prior_->involves(e.normal))
+      gone.insert({e.normal, e.distance});
+  if (!gone.empty()) {
+    Marginalizer marginalizer;
+    marginalizer.addFactor(std::make_unique<MarginalizationFactor>(prior_), nullptr,
+                           prior_->blocks);
+    prior_ = marginalizer.marginalize(gone);
+  }
   for (auto it = planes_.begin(); it != planes_.end();)
     it = seen.count(it->first) ? std::next(it) : planes_.erase(it);
 }
@@ -395,6 +422,7 @@ void SlidingWindowEstimator::flushPlanes() {
     o.covariance = Eigen::Matrix4d::Identity() * kPlaneSigmaPerPoint * kPlaneSigmaPerPoint /
                    static_cast<double>(o.points.size());
     o.time = window_.back()->features.t;
+    o.visit = estimate.visit;
     planes_map_.update(o);
   }
 }
@@ -544,6 +572,7 @@ void SlidingWindowEstimator::tryInitialize() {
     PlaneEstimate e;
     for (int i = 0; i < 3; ++i) e.normal[i] = plane.n[i];
     e.distance[0] = plane.d;
+    e.visit = ++plane_visits_;
     planes_[mask] = e;
   }
   if (last_good_) reconnect();

@@ -106,6 +106,37 @@ TEST(PlanesMap, SameLabelSeenAgainWithDriftKeepsItsEntry) {
   EXPECT_NE(map.update(moved), id);
 }
 
+TEST(PlanesMap, EstimatesOfOneVisitReplaceEachOtherAndVisitsAreFused) {
+  PlanesMap map;
+  PlaneObservation o;
+  o.mask_id = 2;
+  o.normal = Eigen::Vector3d::UnitX();
+  o.covariance = Eigen::Matrix4d::Identity() * 1e-4;
+  for (int k = 0; k < 10; ++k) o.points.emplace_back(20.0, k * 0.3, 1.0);
+  // Visit 1: the window's estimate improves (20.3 -> 20.1 -> 20.0); the map follows its newest.
+  o.visit = 1;
+  for (double d : {20.3, 20.1, 20.0}) {
+    o.distance = d;
+    map.update(o);
+  }
+  ASSERT_EQ(map.planes().size(), 1u);
+  EXPECT_DOUBLE_EQ(map.planes()[0].distance, 20.0);
+  EXPECT_EQ(map.planes()[0].observations, 3u);
+  // Visit 2 (equal covariance) says 20.2 then 20.1: fused with visit 1's 20.0 each time.
+  o.visit = 2;
+  o.distance = 20.2;
+  map.update(o);
+  EXPECT_NEAR(map.planes()[0].distance, 20.1, 1e-9);
+  o.distance = 20.1;
+  map.update(o);
+  EXPECT_NEAR(map.planes()[0].distance, 20.05, 1e-9);
+  EXPECT_NEAR(map.planes()[0].covariance(3, 3), 0.5e-4, 1e-12);
+  // Without a visit, every observation is fused as independent (the information adds up).
+  o.visit = 0;
+  map.update(o);
+  EXPECT_NEAR(map.planes()[0].covariance(3, 3), 1e-4 / 3, 1e-12);
+}
+
 TEST(PlanesMap, ParallelPlanesOneMetreApartStaySeparate) {
   PlanesMap map;
   PlaneObservation a;
