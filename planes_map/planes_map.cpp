@@ -110,12 +110,8 @@ int PlanesMap::update(const PlaneObservation& obs) {
     p.normal = obs.normal.normalized();
     p.distance = obs.distance;
     p.covariance = obs.covariance;
-    p.support = obs.points;
-    p.decimateSupport(options_.voxel_size_m, options_.max_support_points);
-    p.updatePolygon();
-    p.observations = 1;
     p.first_seen = p.last_seen = obs.time;
-    p.mask_ids.insert(obs.mask_id);
+    record(p, obs);
     planes_.push_back(p);
     mask_to_plane_[obs.mask_id] = p.id;
     if (obs.visit != 0) visit_start_[p.id] = {obs.visit, false};
@@ -129,14 +125,13 @@ int PlanesMap::update(const PlaneObservation& obs) {
     VisitStart& start = visit_start_[target->id];
     if (start.visit != obs.visit)
       start = {obs.visit, true, target->normal, target->distance, target->covariance};
-    Plane& p = *target;
-    p.normal = obs.normal.normalized();
-    p.distance = obs.distance;
-    p.covariance = obs.covariance;
+    target->normal = obs.normal.normalized();
+    target->distance = obs.distance;
+    target->covariance = obs.covariance;
     if (start.known)
-      fuseEstimates(p.normal, p.distance, p.covariance, start.normal, start.distance,
-                    start.covariance);
-    record(p, obs);
+      fuseEstimates(target->normal, target->distance, target->covariance, start.normal,
+                    start.distance, start.covariance);
+    record(*target, obs);
   }
   mask_to_plane_[obs.mask_id] = target->id;
   return target->id;

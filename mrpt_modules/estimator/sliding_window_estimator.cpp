@@ -431,14 +431,13 @@ double SlidingWindowEstimator::significantTimeOffset(const InitializationResult&
   time_offset_estimated_ = true;
   std::vector<double> t;
   std::vector<Eigen::Matrix3d> R;
-  std::vector<ImuSample> samples;
   for (size_t k = 0; k < init_buffer_.size(); ++k) {
     t.push_back(init_buffer_[k].first.t);
     R.push_back(init.T_w_b[k].linear());
-    appendSamples(samples, init_buffer_[k].second);
   }
   std::string why;
-  const auto e = estimateTimeOffset(t, R, samples, init.bg, options_.max_time_offset_s, &why);
+  const auto e =
+      estimateTimeOffset(t, R, initBufferSamples(), init.bg, options_.max_time_offset_s, &why);
   if (!e) {
     time_offset_note_ = "time offset not estimated: " + why;
     return 0;
@@ -453,13 +452,16 @@ double SlidingWindowEstimator::significantTimeOffset(const InitializationResult&
   return significant ? e->td : 0;
 }
 
+std::vector<ImuSample> SlidingWindowEstimator::initBufferSamples() const {
+  std::vector<ImuSample> samples;
+  for (const auto& [frame, imu] : init_buffer_) appendSamples(samples, imu);
+  return samples;
+}
+
 void SlidingWindowEstimator::moveInitBuffer(double dt) {
   time_offset_ += dt;
-  std::vector<ImuSample> samples;
-  for (auto& [frame, imu] : init_buffer_) {
-    frame.t += dt;
-    appendSamples(samples, imu);
-  }
+  const std::vector<ImuSample> samples = initBufferSamples();
+  for (auto& [frame, imu] : init_buffer_) frame.t += dt;
   // Each frame's samples dealt out again: from the last one at or before the previous frame.
   for (size_t k = 0; k < init_buffer_.size(); ++k) {
     const double from = k == 0 ? -INFINITY : init_buffer_[k - 1].first.t;
@@ -502,6 +504,7 @@ void SlidingWindowEstimator::tryInitialize() {
     // only if it initializes there.
     if (const double td = significantTimeOffset(init); td != 0) {
       const auto original = init_buffer_;
+      const double original_offset = time_offset_;
       moveInitBuffer(td);
       tryInitialize();
       if (initialized_) {
@@ -509,7 +512,7 @@ void SlidingWindowEstimator::tryInitialize() {
         return;
       }
       init_buffer_ = original;
-      time_offset_ -= td;
+      time_offset_ = original_offset;
       time_offset_note_ += ": not applied (no initialization on the corrected times)";
       status_ = "tracking";
       status_detail_ = init.reason;
@@ -607,11 +610,6 @@ void SlidingWindowEstimator::reconnect() {
   const Eigen::Quaterniond yaw(
       Eigen::AngleAxisd(std::atan2(M(1, 0), M(0, 0)), Eigen::Vector3d::UnitZ()));
   const Eigen::Vector3d shift = posePosition(to.pose) - yaw * posePosition(first.pose);
-  moveWindow(yaw, shift);
-}
-
-void SlidingWindowEstimator::moveWindow(const Eigen::Quaterniond& yaw,
-                                        const Eigen::Vector3d& shift) {
   for (auto& f : window_) {
     const Eigen::Vector3d p = yaw * posePosition(f->pose) + shift;
     const Eigen::Quaterniond q = (yaw * poseRotation(f->pose)).normalized();

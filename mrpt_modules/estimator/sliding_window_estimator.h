@@ -158,13 +158,13 @@ class SlidingWindowEstimator {
   void tryInitialize();
   /// The time offset estimated on the initialized window when significant, else 0 (once).
   double significantTimeOffset(const InitializationResult& init);
+  /// The IMU samples of the initialization buffer, in time order, once each.
+  std::vector<ImuSample> initBufferSamples() const;
   /// Moves the buffered frames (and the offset) by dt and deals their IMU samples out again.
   void moveInitBuffer(double dt);
   /// Moves a re-initialized window (and its planes) into the world of the last good state by the
   /// yaw and translation that put its first keyframe on the IMU's dead reckoning.
   void reconnect();
-  /// X ↦ yaw X + shift for every window state and plane (the directions VIO cannot observe).
-  void moveWindow(const Eigen::Quaterniond& yaw, const Eigen::Vector3d& shift);
   struct ImuDefects {
     bool gap = false;  // a step longer than max_imu_step_s
     bool accel_saturated = false, gyro_saturated = false;
