@@ -6,11 +6,14 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <vector>
 
 #include "rawlog_io/input_error.h"
 #include "rawlog_io/mrpt_conversions.h"
+#include "rawlog_io/png_gray_decoder.h"
 
 namespace fs = std::filesystem;
 
@@ -98,6 +101,39 @@ size_t RawlogReader::entriesRead() const { return impl_->entries; }
 const std::string& RawlogReader::path() const { return impl_->path; }
 const std::string& RawlogReader::imagesDir() const { return impl_->images_dir; }
 
+namespace {
+
+/// The image in `file`: 8-bit grayscale PNGs by PngGrayDecoder, anything else by OpenCV. Its
+/// buffers are kept per thread, between frames.
+cv::Mat decodeImageFile(const std::string& file, const std::string& rawlog,
+                        const std::string& entry) {
+  thread_local PngGrayDecoder decoder;
+  thread_local std::vector<uint8_t> bytes;
+  std::error_code error;
+  const auto size = fs::is_regular_file(file, error) ? fs::file_size(file, error) : 0;
+  std::ifstream in(file, std::ios::binary);
+  if (error || size == 0 || !in)
+    throw InputError(rawlog, entry, "image missing or unreadable: " + file);
+  bytes.resize(size);
+  if (!in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(size)))
+    throw InputError(rawlog, entry, "image unreadable: " + file);
+  cv::Mat img;
+  std::string why;
+  switch (decoder.decode(bytes.data(), bytes.size(), img, why)) {
+    case PngGrayDecoder::Status::Decoded:
+      return img;
+    case PngGrayDecoder::Status::Corrupt:
+      throw InputError(rawlog, entry, "image unreadable: " + file + " (" + why + ")");
+    case PngGrayDecoder::Status::OtherVariant:
+      break;
+  }
+  img = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
+  if (img.empty()) throw InputError(rawlog, entry, "image missing or unreadable: " + file);
+  return img;
+}
+
+}  // namespace
+
 cv::Mat loadGrayImage(const mrpt::obs::CObservationImage& obs, const RawlogReader& reader) {
   const std::string entry = "entry " + std::to_string(reader.entriesRead());
   std::string file;
@@ -107,9 +143,7 @@ cv::Mat loadGrayImage(const mrpt::obs::CObservationImage& obs, const RawlogReade
   } else {
     throw InputError(reader.path(), entry, "image is not stored externally (DESIGN.md §4)");
   }
-  // Checked first: OpenCV would print its own warning for a missing file.
-  cv::Mat img = fs::is_regular_file(file) ? cv::imread(file, cv::IMREAD_UNCHANGED) : cv::Mat();
-  if (img.empty()) throw InputError(reader.path(), entry, "image missing or unreadable: " + file);
+  cv::Mat img = decodeImageFile(file, reader.path(), entry);
   if (img.channels() == 3) cv::cvtColor(img, img, cv::COLOR_BGR2GRAY);
   if (img.type() != CV_8UC1)
     throw InputError(reader.path(), entry, "image is not 8-bit grayscale: " + file);
