@@ -20,6 +20,13 @@ uint32_t bigEndian32(const uint8_t* p) {
 
 bool isChunk(const uint8_t* type, const char* name) { return std::memcmp(type, name, 4) == 0; }
 
+// PNG spec §5.3: chunk types are four ASCII letters.
+bool isValidChunkType(const uint8_t* type) {
+  for (int i = 0; i < 4; ++i)
+    if (!((type[i] >= 'A' && type[i] <= 'Z') || (type[i] >= 'a' && type[i] <= 'z'))) return false;
+  return true;
+}
+
 // PNG spec §9.4: the predictor closest to left + up - upper_left, ties to left then up.
 inline int paeth(int left, int up, int upper_left) {
   const int pa = std::abs(up - upper_left);
@@ -94,6 +101,8 @@ PngGrayDecoder::Status PngGrayDecoder::decode(const uint8_t* data, size_t size, 
     const uint8_t* body = type + 4;
     if (length > size - pos - 12)
       return corrupt("truncated in the chunk at byte " + std::to_string(pos));
+    if (!isValidChunkType(type))
+      return corrupt("invalid chunk type at byte " + std::to_string(pos));
     if (libdeflate_crc32(0, type, 4 + size_t(length)) != bigEndian32(body + length))
       return corrupt("CRC mismatch in the chunk at byte " + std::to_string(pos));
     if (!header_seen) {

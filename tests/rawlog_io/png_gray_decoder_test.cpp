@@ -216,6 +216,10 @@ TEST(PngGrayDecoder, CorruptFilesAreRefusedWithAReason) {
 
   expectCorrupt(assemble(grayPngParts(img, {5})), "unknown filter type 5 in row 0");
 
+  PngParts bad_type = grayPngParts(img, {0});
+  bad_type.extra_chunk = "t1Xt";  // libpng refuses it too
+  expectCorrupt(assemble(bad_type), "invalid chunk type at byte 33");
+
   PngParts taller = grayPngParts(img, {1});
   taller.ihdr[7] = uint8_t(img.rows + 1);  // one row more than the data holds
   expectCorrupt(assemble(taller), "image data ends early");
