@@ -127,9 +127,8 @@ PngGrayDecoder::Status PngGrayDecoder::decode(const uint8_t* data, size_t size, 
   }
 
   const size_t row_bytes = size_t(width) + 1;
-  const size_t filtered_bytes = row_bytes * height;
-  if (filtered_bytes / row_bytes != height ||
-      filtered_bytes > compressed_.size() * kMaxDeflateRatio)
+  const size_t filtered_bytes = row_bytes * height;  // < 2^62: both sides are below 2^31
+  if (filtered_bytes > compressed_.size() * kMaxDeflateRatio)
     return corrupt("too little image data for " + std::to_string(width) + "x" +
                    std::to_string(height) + " pixels");
   filtered_.resize(filtered_bytes);

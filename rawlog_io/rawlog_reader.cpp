@@ -110,7 +110,7 @@ cv::Mat decodeImageFile(const std::string& file, const std::string& rawlog,
   thread_local PngGrayDecoder decoder;
   thread_local std::vector<uint8_t> bytes;
   std::error_code error;
-  const auto size = fs::is_regular_file(file, error) ? fs::file_size(file, error) : 0;
+  const auto size = fs::file_size(file, error);  // an error for a missing file or a folder
   std::ifstream in(file, std::ios::binary);
   if (error || size == 0 || !in)
     throw InputError(rawlog, entry, "image missing or unreadable: " + file);
