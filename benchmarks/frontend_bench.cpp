@@ -24,11 +24,12 @@ const std::vector<rpvio::sim::RenderedFrame>& frames() {
   return rendered;
 }
 
-void trackSequence(benchmark::State& state, bool masks) {
+void trackSequence(benchmark::State& state, bool masks, int detection_level = 0) {
   const auto& images = frames();
   rpvio::sim::SimConfig config;
   rpvio::TrackerOptions options;
   options.use_masks = masks;
+  options.detection_level = detection_level;
   const rpvio::CameraIntrinsics camera = config.calibration().camera;
   size_t features = 0, tracked = 0;
   for (auto _ : state) {
@@ -48,8 +49,13 @@ void trackSequence(benchmark::State& state, bool masks) {
 
 void BM_FrontendPlaneMasks(benchmark::State& state) { trackSequence(state, true); }
 void BM_FrontendNoMasks(benchmark::State& state) { trackSequence(state, false); }
+// Corners detected on the half-resolution image (the `detection_level = 1` option).
+void BM_FrontendPlaneMasksHalfResolutionCorners(benchmark::State& state) {
+  trackSequence(state, true, 1);
+}
 BENCHMARK(BM_FrontendPlaneMasks)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_FrontendNoMasks)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_FrontendPlaneMasksHalfResolutionCorners)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 
