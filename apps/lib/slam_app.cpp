@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -18,6 +19,7 @@
 #include "mrpt_modules/frontend/feature_tracker_module.h"
 #include "planes_map/plane_map_exporters.h"
 #include "rawlog_io/atomic_file.h"
+#include "rawlog_io/input_error.h"
 #include "rawlog_io/rawlog_labels.h"
 #include "rawlog_io/trajectory_io.h"
 
@@ -35,7 +37,8 @@ const char* kUsage =
     "                    optimization_ms, total_ms (wall time of the frame, all of it), features,\n"
     "                    planes, state\n"
     "    summary.json    frames, initialization time, resets and causes, timing, real-time\n"
-    "                    factor, peak memory\n"
+    "                    factor, peak memory; complete (false: the rawlog ended in bad input,\n"
+    "                    input_error says where, the outputs hold the frames before it)\n"
     "    planes.{yaml,ply,bt,3Dscene}, planes_topview.png  the plane map\n"
     "  --threads N  OpenCV threads (default 1: the whole pipeline on one core, the setting of the\n"
     "               published timings; the benchmark runs sequences in parallel instead)\n";
@@ -117,7 +120,17 @@ int slamMain(int argc, char** argv) {
       }
       std::fprintf(stderr, "  %.1f frames/s   ", rate);
     });
-    pipeline.play(cli.value("rawlog"));
+    // Bad input part-way (a truncated rawlog, a missing image, ...): the frames before it are
+    // kept, written like a complete run's, then the error is reported and the exit code is 2.
+    std::exception_ptr input_error;
+    std::string input_error_text;
+    try {
+      pipeline.play(cli.value("rawlog"));
+    } catch (const InputError& e) {
+      if (rows.empty()) throw;
+      input_error = std::current_exception();
+      input_error_text = e.what();
+    }
     if (terminal) std::fprintf(stderr, "\n");
     const double wall = std::chrono::duration<double>(Clock::now() - start).count();
 
@@ -145,7 +158,9 @@ int slamMain(int argc, char** argv) {
     });
     const double sequence_s = rows.size() < 2 ? 0 : rows.back().t - rows.front().t;
     writeFileAtomically(path("summary.json"), [&](std::ostream& s) {
-      s << "{\n  \"frames\": " << rows.size() << ",\n  \"poses\": " << trajectory.size()
+      s << "{\n  \"complete\": " << (input_error ? "false" : "true")
+        << ",\n  \"input_error\": " << jsonString(input_error_text)
+        << ",\n  \"frames\": " << rows.size() << ",\n  \"poses\": " << trajectory.size()
         << ",\n  \"initialized_at\": " << (estimator ? estimator->initializedAt() : -1)
         << ",\n  \"time_offset_s\": " << (estimator ? estimator->estimator().timeOffset() : 0)
         << ",\n  \"time_offset_note\": "
@@ -179,9 +194,11 @@ int slamMain(int argc, char** argv) {
       writePlanesScene(path("planes.3Dscene"), planes);
       writePlanesTopView(path("planes_topview.png"), planes, trajectory);
     }
-    std::printf("%zu frames, %zu poses, %zu resets, wall %.1f s; outputs in %s\n", rows.size(),
+    std::printf("%zu frames, %zu poses, %zu resets, wall %.1f s; outputs in %s%s\n", rows.size(),
                 trajectory.size(), estimator ? estimator->estimator().resets() : 0, wall,
-                out.c_str());
+                out.c_str(), input_error ? " (the frames before the error below)" : "");
+    std::fflush(stdout);
+    if (input_error) std::rethrow_exception(input_error);
     return 0;
   });
 }

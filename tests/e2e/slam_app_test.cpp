@@ -1,5 +1,6 @@
 // rpvio-slam as a user runs it on a simulated rawlog: outputs written and parseable, the same
-// inputs twice give the identical trajectory, bad arguments exit 2.
+// inputs twice give the identical trajectory, bad arguments exit 2, a truncated rawlog keeps the
+// frames before the truncation.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -49,6 +50,36 @@ TEST(SlamApp, WritesOutputsAndIsDeterministic) {
   std::istringstream(row) >> t >> comma >> load_ms >> comma >> frontend_ms >> comma >>
       optimization_ms >> comma >> total_ms;
   EXPECT_NEAR(load_ms + frontend_ms + optimization_ms, total_ms, 0.0025) << row;
+}
+
+TEST(SlamApp, TruncatedRawlogKeepsTheFramesBeforeIt) {
+  test::TempDir dir;
+  sim::SimConfig config;
+  config.duration = 5.0;
+  sim::writeSequence(config, dir.file("seq"));
+  const std::string rawlog = dir.file("seq/seq.rawlog");
+  const std::string slam = test::binDir() + "/rpvio-slam --config " +
+                           std::string(RPVIO_SOURCE_DIR) + "/config/rpvio-single.ini --calib " +
+                           dir.file("seq/calib.ini") + " --rawlog " + rawlog + " --quiet --out ";
+  std::string out;
+  ASSERT_EQ(test::runCommand(slam + dir.file("whole"), out), 0) << out;
+  // Cut inside an entry three quarters of the way: the recording ends mid-write.
+  std::filesystem::resize_file(rawlog, std::filesystem::file_size(rawlog) * 3 / 4 + 5);
+  EXPECT_EQ(test::runCommand(slam + dir.file("cut"), out), 2) << out;
+  EXPECT_NE(out.find("seq.rawlog:entry "), std::string::npos) << out;
+  const std::string summary = test::readFile(dir.file("cut/summary.json"));
+  EXPECT_NE(summary.find("\"complete\": false"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"input_error\": \"" + rawlog + ":entry "), std::string::npos) << summary;
+  EXPECT_NE(test::readFile(dir.file("whole/summary.json")).find("\"complete\": true"),
+            std::string::npos);
+  // The poses before the cut are the whole run's, to the byte (initialized at 2 s, 20 Hz).
+  const std::string whole = test::readFile(dir.file("whole/trajectory.tum"));
+  const std::string cut = test::readFile(dir.file("cut/trajectory.tum"));
+  EXPECT_GT(readTum(dir.file("cut/trajectory.tum")).size(), 20u);
+  EXPECT_LT(cut.size(), whole.size());
+  EXPECT_EQ(whole.compare(0, cut.size(), cut), 0);
+  EXPECT_TRUE(std::filesystem::exists(dir.file("cut/stats.csv")));
+  EXPECT_TRUE(std::filesystem::exists(dir.file("cut/planes.yaml")));
 }
 
 TEST(SlamApp, BadArgumentsExitTwo) {
