@@ -5,6 +5,8 @@
 #include <limits>
 #include <sstream>
 
+#include "rawlog_io/input_error.h"
+
 namespace rpvio {
 namespace {
 
@@ -29,6 +31,12 @@ PlanesMapOptions PlanesMapOptions::load(const IniFile& ini, const std::string& s
   o.voxel_size_m = ini.numberOr(s, "voxel_size_m", o.voxel_size_m);
   o.max_support_points = static_cast<size_t>(
       ini.numberOr(s, "max_support_points", static_cast<double>(o.max_support_points)));
+  const double min_observations =
+      ini.numberOr(s, "min_observations", static_cast<double>(o.min_observations));
+  if (!(min_observations >= 1))
+    throw InputError(ini.path(), "line " + std::to_string(ini.line(s, "min_observations")),
+                     "min_observations must be 1 or more");
+  o.min_observations = static_cast<size_t>(min_observations);
   return o;
 }
 
@@ -38,7 +46,7 @@ std::string PlanesMapOptions::describe() const {
       << " max_distance_m=" << max_distance_m << " max_gap_m=" << max_gap_m
       << " max_label_normal_angle_deg=" << max_label_normal_angle_deg
       << " max_label_distance_m=" << max_label_distance_m << " voxel_size_m=" << voxel_size_m
-      << " max_support_points=" << max_support_points;
+      << " max_support_points=" << max_support_points << " min_observations=" << min_observations;
   return out.str();
 }
 
@@ -160,6 +168,13 @@ size_t PlanesMap::mergeDuplicates() {
       ++merged;
     }
   return merged;
+}
+
+std::vector<Plane> PlanesMap::confirmedPlanes() const {
+  std::vector<Plane> confirmed;
+  for (const auto& p : planes_)
+    if (p.observations >= options_.min_observations) confirmed.push_back(p);
+  return confirmed;
 }
 
 const Plane* PlanesMap::plane(int id) const {

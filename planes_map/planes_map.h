@@ -20,6 +20,9 @@ struct PlanesMapOptions {
   double max_label_distance_m = 1.0;
   double voxel_size_m = 0.10;  // support decimation
   size_t max_support_points = 3000;
+  // A plane is confirmed (exported) once this many optimizations have seen it; before, it may be
+  // one window's bad estimate of a known surface (a far wall with few points).
+  size_t min_observations = 3;
 
   /// Reads the keys present in `section`; InputError (file, line) on a bad value.
   static PlanesMapOptions load(const IniFile& ini, const std::string& section);
@@ -54,6 +57,8 @@ class PlanesMap {
   /// The plane a mask label currently stands for, or nullptr.
   const Plane* planeOfMask(int mask_id) const;
   const std::vector<Plane>& planes() const { return planes_; }
+  /// The planes seen in at least min_observations optimizations: the map the exporters write.
+  std::vector<Plane> confirmedPlanes() const;
   const PlanesMapOptions& options() const { return options_; }
 
  private:

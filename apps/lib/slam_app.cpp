@@ -38,7 +38,8 @@ const char* kUsage =
     "                    planes, state\n"
     "    summary.json    frames, initialization time, resets and causes, timing, real-time\n"
     "                    factor, peak memory; complete (false: the rawlog ended in bad input,\n"
-    "                    input_error says where, the outputs hold the frames before it)\n"
+    "                    input_error says where, the outputs hold the frames before it),\n"
+    "                    map_planes (confirmed, exported), tentative_planes (seen too few times)\n"
     "    planes.{yaml,ply,bt,3Dscene}, planes_topview.png  the plane map\n"
     "  --threads N  OpenCV threads (default 1: the whole pipeline on one core, the setting of the\n"
     "               published timings; the benchmark runs sequences in parallel instead)\n";
@@ -157,6 +158,10 @@ int slamMain(int argc, char** argv) {
       }
     });
     const double sequence_s = rows.size() < 2 ? 0 : rows.back().t - rows.front().t;
+    const std::vector<Plane> planes =
+        estimator ? estimator->estimator().planesMap().confirmedPlanes() : std::vector<Plane>{};
+    const size_t tentative_planes =
+        estimator ? estimator->estimator().planesMap().planes().size() - planes.size() : 0;
     writeFileAtomically(path("summary.json"), [&](std::ostream& s) {
       s << "{\n  \"complete\": " << (input_error ? "false" : "true")
         << ",\n  \"input_error\": " << jsonString(input_error_text)
@@ -184,10 +189,10 @@ int slamMain(int argc, char** argv) {
         << ",\n  \"optimization_ms_p95\": " << percentile(optimization_ms, 0.95)
         << ",\n  \"wall_s\": " << wall << ",\n  \"sequence_s\": " << sequence_s
         << ",\n  \"real_time_factor\": " << (wall > 0 ? sequence_s / wall : 0)
-        << ",\n  \"peak_memory_mb\": " << peakMemoryMb() << "\n}\n";
+        << ",\n  \"peak_memory_mb\": " << peakMemoryMb() << ",\n  \"map_planes\": " << planes.size()
+        << ",\n  \"tentative_planes\": " << tentative_planes << "\n}\n";
     });
     if (estimator) {
-      const auto& planes = estimator->estimator().planesMap().planes();
       writePlanesYaml(path("planes.yaml"), planes);
       writePlanesPly(path("planes.ply"), planes);
       writePlanesOctomap(path("planes.bt"), planes, kOctomapResolution);

@@ -10,6 +10,7 @@
 
 #include "planes_map/plane_map_exporters.h"
 #include "planes_map/planes_map.h"
+#include "rawlog_io/input_error.h"
 #include "rawlog_io/sim/warehouse_scene.h"
 #include "tests/test_util.h"
 
@@ -104,6 +105,42 @@ TEST(PlanesMap, SameLabelSeenAgainWithDriftKeepsItsEntry) {
   PlaneObservation moved = first;
   moved.distance = 21.5;
   EXPECT_NE(map.update(moved), id);
+}
+
+TEST(PlanesMap, OneBadWindowEstimateStaysTentative) {
+  PlanesMap map;  // min_observations 3
+  PlaneObservation wall;
+  wall.mask_id = 5;
+  wall.normal = Eigen::Vector3d::UnitY();
+  wall.distance = 20.0;
+  for (int k = 0; k < 10; ++k) wall.points.emplace_back(k * 0.3, 20.0, 1.0);
+  for (int k = 0; k < 3; ++k) map.update(wall);
+  // One window's estimate of the same wall, 5.5 m and 12 deg off (few points, far away): beyond
+  // the label's thresholds, so an entry of its own, but not confirmed.
+  PlaneObservation bad = wall;
+  bad.normal = Eigen::Vector3d(std::sin(0.21), std::cos(0.21), 0);
+  bad.distance = 25.5;
+  const int bad_id = map.update(bad);
+  ASSERT_EQ(map.planes().size(), 2u);
+  ASSERT_EQ(map.confirmedPlanes().size(), 1u);
+  EXPECT_NE(map.confirmedPlanes()[0].id, bad_id);
+  // A surface seen in three optimizations is confirmed.
+  map.update(bad);
+  EXPECT_EQ(map.confirmedPlanes().size(), 1u);
+  map.update(bad);
+  EXPECT_EQ(map.confirmedPlanes().size(), 2u);
+}
+
+TEST(PlanesMap, MinObservationsBelowOneIsABadConfig) {
+  test::TempDir dir;
+  test::writeText(dir.file("map.ini"), "[PlanesMap]\nvoxel_size_m = 0.1\nmin_observations = 0\n");
+  try {
+    PlanesMapOptions::load(IniFile(dir.file("map.ini")), "PlanesMap");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(dir.file("map.ini") + ":line 3"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(PlanesMap, EstimatesOfOneVisitReplaceEachOtherAndVisitsAreFused) {
