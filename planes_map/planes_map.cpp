@@ -185,7 +185,8 @@ const Plane* PlanesMap::plane(int id) const {
 
 const Plane* PlanesMap::planeOfMask(int mask_id) const {
   const auto it = mask_to_plane_.find(mask_id);
-  return it == mask_to_plane_.end() ? nullptr : plane(it->second);
+  const Plane* p = it == mask_to_plane_.end() ? nullptr : plane(it->second);
+  return p && p->observations >= options_.min_observations ? p : nullptr;
 }
 
 }  // namespace rpvio

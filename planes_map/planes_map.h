@@ -54,7 +54,8 @@ class PlanesMap {
   size_t mergeDuplicates();
 
   const Plane* plane(int id) const;
-  /// The plane a mask label currently stands for, or nullptr.
+  /// The confirmed plane a mask label currently stands for (what the estimator may start a visit
+  /// from), or nullptr.
   const Plane* planeOfMask(int mask_id) const;
   const std::vector<Plane>& planes() const { return planes_; }
   /// The planes seen in at least min_observations optimizations: the map the exporters write.

@@ -124,11 +124,15 @@ TEST(PlanesMap, OneBadWindowEstimateStaysTentative) {
   ASSERT_EQ(map.planes().size(), 2u);
   ASSERT_EQ(map.confirmedPlanes().size(), 1u);
   EXPECT_NE(map.confirmedPlanes()[0].id, bad_id);
+  // The label now stands for the tentative entry: the estimator gets no plane to start from.
+  EXPECT_EQ(map.planeOfMask(5), nullptr);
   // A surface seen in three optimizations is confirmed.
   map.update(bad);
   EXPECT_EQ(map.confirmedPlanes().size(), 1u);
   map.update(bad);
   EXPECT_EQ(map.confirmedPlanes().size(), 2u);
+  ASSERT_NE(map.planeOfMask(5), nullptr);
+  EXPECT_EQ(map.planeOfMask(5)->id, bad_id);
 }
 
 TEST(PlanesMap, MinObservationsBelowOneIsABadConfig) {
