@@ -12,6 +12,7 @@
 
 #include "rawlog_io/atomic_file.h"
 #include "rawlog_io/input_error.h"
+#include "rawlog_io/input_file.h"
 
 namespace rpvio {
 namespace {
@@ -82,8 +83,7 @@ void writePlanesYaml(const std::string& path, const std::vector<Plane>& planes) 
 }
 
 std::vector<Plane> readPlanesYaml(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "", "file not found");
+  std::ifstream in = openInputFile(path);
   std::vector<Plane> planes;
   std::string raw;
   for (int line = 1; std::getline(in, raw); ++line) {

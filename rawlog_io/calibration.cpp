@@ -1,7 +1,6 @@
 #include "rawlog_io/calibration.h"
 
 #include <cmath>
-#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <limits>
@@ -11,6 +10,7 @@
 #include "rawlog_io/atomic_file.h"
 #include "rawlog_io/ini_file.h"
 #include "rawlog_io/input_error.h"
+#include "rawlog_io/input_file.h"
 
 namespace rpvio {
 namespace {
@@ -38,8 +38,7 @@ int pixelCount(const IniFile& ini, const std::string& key) {
 }  // namespace
 
 Calibration Calibration::load(const std::string& path) {
-  if (!std::filesystem::is_regular_file(path))
-    throw InputError(path, "", "calibration file not found");
+  requireRegularFile(path, "calibration file");
   const IniFile ini(path);
   Calibration c;
   c.camera.width = pixelCount(ini, "width");

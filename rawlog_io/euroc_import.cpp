@@ -10,6 +10,7 @@
 
 #include "rawlog_io/euroc_csv.h"
 #include "rawlog_io/input_error.h"
+#include "rawlog_io/input_file.h"
 #include "rawlog_io/rawlog_writer.h"
 #include "rawlog_io/text_table.h"
 #include "rawlog_io/trajectory_io.h"
@@ -21,8 +22,7 @@ namespace {
 
 /// The numbers of `key: [a, b, ...]` (possibly spanning lines) or `key: value`, in a sensor.yaml.
 std::vector<double> yamlNumbers(const std::string& path, const std::string& key) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "", "file not found");
+  std::ifstream in = openInputFile(path);
   std::string line, collected;
   int line_no = 0, key_line = 0;
   bool in_list = false;

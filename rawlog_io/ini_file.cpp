@@ -2,11 +2,11 @@
 
 #include <cmath>
 #include <cstdlib>
-#include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "rawlog_io/input_error.h"
+#include "rawlog_io/input_file.h"
 #include "rawlog_io/text_table.h"
 
 namespace rpvio {
@@ -17,9 +17,7 @@ std::string lineRef(int line) { return "line " + std::to_string(line); }
 }  // namespace
 
 IniFile::IniFile(const std::string& path) : path_(path) {
-  if (!std::filesystem::is_regular_file(path)) throw InputError(path, "", "file not found");
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "", "cannot open file");
+  std::ifstream in = openInputFile(path);
   std::string section, raw;
   for (int line = 1; std::getline(in, raw); ++line) {
     const std::string s = trim(raw.substr(0, raw.find_first_of(";#")));

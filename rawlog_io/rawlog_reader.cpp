@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "rawlog_io/input_error.h"
+#include "rawlog_io/input_file.h"
 #include "rawlog_io/mrpt_conversions.h"
 #include "rawlog_io/png_gray_decoder.h"
 
@@ -59,7 +60,7 @@ struct RawlogReader::Impl {
 
 RawlogReader::RawlogReader(const std::string& path) : impl_(std::make_unique<Impl>()) {
   impl_->path = path;
-  if (!fs::is_regular_file(path)) throw InputError(path, "", "rawlog file not found");
+  requireRegularFile(path, "rawlog file");
   if (!impl_->gz.open(path)) throw InputError(path, "", "cannot open rawlog");
   // MRPT 2.5.8's CRawlog::detectImagesDirectory() fails for paths with a directory part.
   const fs::path p = fs::absolute(path);

@@ -2,11 +2,11 @@
 
 #include <cmath>
 #include <cstdlib>
-#include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "rawlog_io/input_error.h"
+#include "rawlog_io/input_file.h"
 
 namespace rpvio {
 
@@ -32,15 +32,10 @@ namespace {
 bool isData(const std::string& trimmed) {
   return !trimmed.empty() && trimmed[0] != '#' && trimmed[0] != '%';
 }
-void checkReadable(const std::string& path, std::ifstream& in) {
-  if (!std::filesystem::is_regular_file(path)) throw InputError(path, "", "file not found");
-  if (!in) throw InputError(path, "", "cannot open file");
-}
 }  // namespace
 
 std::string firstTextRow(const std::string& path, int& line_number) {
-  std::ifstream in(path);
-  checkReadable(path, in);
+  std::ifstream in = openInputFile(path);
   std::string line;
   for (line_number = 1; std::getline(in, line); ++line_number)
     if (isData(trim(line))) return trim(line);
@@ -49,8 +44,7 @@ std::string firstTextRow(const std::string& path, int& line_number) {
 
 void forEachTextRow(const std::string& path,
                     const std::function<void(const std::vector<std::string>&, int)>& row) {
-  std::ifstream in(path);
-  checkReadable(path, in);
+  std::ifstream in = openInputFile(path);
   std::string line;
   int rows = 0;
   for (int line_no = 1; std::getline(in, line); ++line_no) {

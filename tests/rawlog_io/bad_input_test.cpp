@@ -12,6 +12,7 @@
 
 #include "rawlog_io/calibration.h"
 #include "rawlog_io/euroc_csv.h"
+#include "rawlog_io/ini_file.h"
 #include "rawlog_io/input_error.h"
 #include "rawlog_io/rawlog_labels.h"
 #include "rawlog_io/rawlog_reader.h"
@@ -91,6 +92,16 @@ TEST(BadInput, MissingRawlog) {
 TEST(BadInput, MissingCalibration) {
   expectInputError([] { Calibration::load("/nonexistent/calib.ini"); }, "/nonexistent/calib.ini",
                    "not found");
+}
+
+TEST(BadInput, DirectoryOrDeviceGivenForAFile) {
+  test::TempDir dir;
+  expectInputError([&] { Calibration::load(dir.path().string()); }, dir.path().string(),
+                   "calibration file expected, found a directory");
+  expectInputError([] { RawlogReader("/dev/null"); }, "/dev/null",
+                   "rawlog file expected, found a special file");
+  expectInputError([] { IniFile("/dev/null"); }, "/dev/null",
+                   "file expected, found a special file");
 }
 
 TEST(BadInput, CalibrationMalformedValue) {
