@@ -36,9 +36,9 @@ RenderedFrame renderFrame(const WarehouseScene& scene, const PinholeCamera& cam,
   cv::Mat intensity(H, W, CV_32F), labels(H, W, CV_8U);
   const double footprint_per_depth = 1.0 / cam.fx;  // one pixel at depth 1 m
   const int k = std::max(1, opt.supersampling);
+  const WarehouseScene::PlanesInView view = scene.planesInView(T_WC.translation());
   auto shade = [&](double u, double v) {
-    const auto [o, d] = pixelRay(cam, T_WC, u, v);
-    return scene.cast(o, d, footprint_per_depth / k);
+    return scene.cast(view, pixelRay(cam, T_WC, u, v).second, footprint_per_depth / k);
   };
 
   // Pass 1: one ray per pixel centre (labels), or k x k rays everywhere.

@@ -89,16 +89,30 @@ void WarehouseScene::setTime(double t) {
   for (auto& c : characters_) c.pose(t);
 }
 
-SceneHit WarehouseScene::cast(const Eigen::Vector3d& o, const Eigen::Vector3d& d,
+WarehouseScene::PlanesInView WarehouseScene::planesInView(const Eigen::Vector3d& origin) const {
+  PlanesInView view;
+  view.origin = origin;
+  for (const ScenePlane& p : planes_) {
+    // A plane the origin is behind (or on) gives t = numerator / denom <= 0 for every ray that
+    // meets its front side (denom < 0): never a hit.
+    const double numerator = p.normal.dot(p.origin - origin);
+    if (numerator < 0) view.planes.emplace_back(&p, numerator);
+  }
+  return view;
+}
+
+SceneHit WarehouseScene::cast(const PlanesInView& view, const Eigen::Vector3d& d,
                               double footprint_per_t) const {
+  const Eigen::Vector3d& o = view.origin;
   SceneHit hit;
   hit.t = INFINITY;
   const ScenePlane* best = nullptr;
   double best_u = 0, best_v = 0;
-  for (const ScenePlane& p : planes_) {
+  for (const auto& [plane, numerator] : view.planes) {
+    const ScenePlane& p = *plane;
     const double denom = p.normal.dot(d);
     if (denom >= -1e-12) continue;  // back face or parallel
-    const double t = p.normal.dot(p.origin - o) / denom;
+    const double t = numerator / denom;
     if (t <= 1e-9 || t >= hit.t) continue;
     const Eigen::Vector3d local = o + t * d - p.origin;
     const double u = local.dot(p.u_axis), v = local.dot(p.v_axis);

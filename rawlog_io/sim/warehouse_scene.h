@@ -7,6 +7,7 @@
 // Mask labels: plane id on static planes, 0 on characters, 255 where the ray hits nothing.
 #include <Eigen/Core>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "rawlog_io/sim/dancing_character.h"
@@ -63,10 +64,20 @@ class WarehouseScene {
 
   /// Poses the characters at time t; the queries below are then read-only (thread-safe).
   void setTime(double t);
+  /// The planes a ray from `origin` can hit: those whose front side faces it, in scene order, each
+  /// with n·(p0 − origin) (< 0). Computed once per camera position, shared by its rays.
+  struct PlanesInView {
+    Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+    std::vector<std::pair<const ScenePlane*, double>> planes;
+  };
+  PlanesInView planesInView(const Eigen::Vector3d& origin) const;
   /// First surface along origin + t·dir (t > 0). `footprint_per_t`: pixel footprint (m) per unit t,
   /// for texture filtering.
+  SceneHit cast(const PlanesInView& view, const Eigen::Vector3d& dir, double footprint_per_t) const;
   SceneHit cast(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir,
-                double footprint_per_t) const;
+                double footprint_per_t) const {
+    return cast(planesInView(origin), dir, footprint_per_t);
+  }
   /// Shortest distance from a point to any character's surface at the current time.
   double distanceToCharacters(const Eigen::Vector3d& x) const;
 
