@@ -173,7 +173,7 @@ size_t PlanesMap::mergeDuplicates() {
 std::vector<Plane> PlanesMap::confirmedPlanes() const {
   std::vector<Plane> confirmed;
   for (const auto& p : planes_)
-    if (p.observations >= options_.min_observations) confirmed.push_back(p);
+    if (isConfirmed(p)) confirmed.push_back(p);
   return confirmed;
 }
 
@@ -186,7 +186,7 @@ const Plane* PlanesMap::plane(int id) const {
 const Plane* PlanesMap::planeOfMask(int mask_id) const {
   const auto it = mask_to_plane_.find(mask_id);
   const Plane* p = it == mask_to_plane_.end() ? nullptr : plane(it->second);
-  return p && p->observations >= options_.min_observations ? p : nullptr;
+  return p && isConfirmed(*p) ? p : nullptr;
 }
 
 }  // namespace rpvio

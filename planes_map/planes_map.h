@@ -63,6 +63,9 @@ class PlanesMap {
   const PlanesMapOptions& options() const { return options_; }
 
  private:
+  bool isConfirmed(const Plane& plane) const {
+    return plane.observations >= options_.min_observations;
+  }
   /// Same orientation and offset (the label thresholds when `same_label`); and, unless
   /// `same_label`, supports no farther apart than max_gap_m.
   bool compatible(const Plane& plane, const Eigen::Vector3d& n, double d,

@@ -17,10 +17,9 @@ void requireRegularFile(const std::string& path, const std::string& what) {
   throw InputError(path, "", what + " not found");
 }
 
-std::ifstream openInputFile(const std::string& path, const std::string& what,
-                            std::ios::openmode mode) {
+std::ifstream openInputFile(const std::string& path, const std::string& what) {
   requireRegularFile(path, what);
-  std::ifstream in(path, mode);
+  std::ifstream in(path);
   if (!in) throw InputError(path, "", "cannot open " + what);
   return in;
 }

@@ -12,7 +12,6 @@ void requireRegularFile(const std::string& path, const std::string& what = "file
 
 /// The file opened for reading, after requireRegularFile; InputError "cannot open <what>" when the
 /// open fails (permissions).
-std::ifstream openInputFile(const std::string& path, const std::string& what = "file",
-                            std::ios::openmode mode = std::ios::in);
+std::ifstream openInputFile(const std::string& path, const std::string& what = "file");
 
 }  // namespace rpvio
