@@ -2,45 +2,87 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <opencv2/imgproc.hpp>
 
 namespace rpvio {
 
-void CornerDetector::computeMinEigenvalues(const cv::Mat& image) {
-  // cv::cornerMinEigenVal(image, ·, 3, 3) step by step, into kept buffers: Sobel gradients scaled
-  // by 1 / (2^(aperture-1) · block · 255), their products summed over the 3x3 block (boxFilter
-  // works channel by channel, so one plane per product gives the same sums), and the smaller
-  // eigenvalue of the summed matrix [[xx, xy], [xy, yy]] as (a + c) - sqrt((a - c)² + b²) with
-  // a = xx / 2, b = xy, c = yy / 2. Planes keep the loops vectorizable.
+namespace {
+
+/// Index of BORDER_REFLECT_101 (cv::BORDER_DEFAULT) for i in [-1, n].
+int reflect101(int i, int n) {
+  if (n == 1) return 0;
+  return i < 0 ? -i : i >= n ? 2 * n - 2 - i : i;
+}
+
+}  // namespace
+
+float CornerDetector::computeMinEigenvalues(const cv::Mat& image, const cv::Mat& allowed) {
+  // cv::cornerMinEigenVal(image, ·, 3, 3) in one pass over kept buffers: Sobel gradients scaled by
+  // 1 / (2^(aperture-1) · block · 255), their float products gx², gx·gy, gy² summed over the 3x3
+  // block (border reflected), and the smaller eigenvalue of [[xx, xy], [xy, yy]] as
+  // (a + c) - sqrt((a - c)² + b²) with a = xx / 2, b = xy, c = yy / 2.
+  // cv::boxFilter sums float images in double and rounds the sum to float. A non-zero product is
+  // within [s², 2^21 s²] (s the scale; 8-bit Sobel responses are integers below 2^10), so as
+  // floats the nine of a block are multiples of one power of two and their sum stays below 2^50
+  // of it: the double sum is exact in any order and rounds to boxFilter's float bit for bit.
   const double scale = 1.0 / (4 * 3 * 255.0);
   cv::Sobel(image, dx_, CV_32F, 1, 0, 3, scale, 0, cv::BORDER_DEFAULT);
   cv::Sobel(image, dy_, CV_32F, 0, 1, 3, scale, 0, cv::BORDER_DEFAULT);
-  for (cv::Mat& m : products_) m.create(image.size(), CV_32F);
-  for (int y = 0; y < image.rows; ++y) {
-    const float* gx = dx_.ptr<float>(y);
-    const float* gy = dy_.ptr<float>(y);
-    float* xx = products_[0].ptr<float>(y);
-    float* xy = products_[1].ptr<float>(y);
-    float* yy = products_[2].ptr<float>(y);
-    for (int x = 0; x < image.cols; ++x) {
+  const int rows = image.rows, cols = image.cols;
+  // Products of the three rows around y, in a ring of three rows per product (slot = row % 3):
+  // small enough to stay in cache, each row computed once.
+  for (auto& ring : product_rows_) ring.resize(3 * static_cast<size_t>(cols));
+  std::array<int, 3> row_in_slot{-1, -1, -1};
+  const auto productRow = [&](size_t product, int row) {
+    return product_rows_[product].data() + static_cast<size_t>(row % 3) * cols;
+  };
+  const auto computeProducts = [&](int row) {
+    if (row_in_slot[row % 3] == row) return;
+    row_in_slot[row % 3] = row;
+    const float* gx = dx_.ptr<float>(row);
+    const float* gy = dy_.ptr<float>(row);
+    float* xx = productRow(0, row);
+    float* xy = productRow(1, row);
+    float* yy = productRow(2, row);
+    for (int x = 0; x < cols; ++x) {
       xx[x] = gx[x] * gx[x];
       xy[x] = gx[x] * gy[x];
       yy[x] = gy[x] * gy[x];
     }
-  }
-  for (cv::Mat& m : products_)
-    cv::boxFilter(m, m, CV_32F, cv::Size(3, 3), cv::Point(-1, -1), false, cv::BORDER_DEFAULT);
+  };
+  // Column sums of the three rows around y, one padded row of doubles per product.
+  for (auto& sums : column_sums_) sums.resize(static_cast<size_t>(cols) + 2);
   min_eigenvalue_.create(image.size(), CV_32F);
-  for (int y = 0; y < image.rows; ++y) {
-    const float* xx = products_[0].ptr<float>(y);
-    const float* xy = products_[1].ptr<float>(y);
-    const float* yy = products_[2].ptr<float>(y);
+  float strongest = 0;
+  for (int y = 0; y < rows; ++y) {
+    const int above = reflect101(y - 1, rows), below = reflect101(y + 1, rows);
+    for (const int row : {above, y, below}) computeProducts(row);
+    for (size_t p = 0; p < product_rows_.size(); ++p) {
+      const float* r0 = productRow(p, above);
+      const float* r1 = productRow(p, y);
+      const float* r2 = productRow(p, below);
+      double* sums = column_sums_[p].data() + 1;
+      for (int x = 0; x < cols; ++x)
+        sums[x] = static_cast<double>(r0[x]) + static_cast<double>(r1[x]) + r2[x];
+      sums[-1] = sums[reflect101(-1, cols)];
+      sums[cols] = sums[reflect101(cols, cols)];
+    }
+    const double* sxx = column_sums_[0].data() + 1;
+    const double* sxy = column_sums_[1].data() + 1;
+    const double* syy = column_sums_[2].data() + 1;
     float* out = min_eigenvalue_.ptr<float>(y);
-    for (int x = 0; x < image.cols; ++x) {
-      const float a = xx[x] * 0.5f, b = xy[x], c = yy[x] * 0.5f;
+    for (int x = 0; x < cols; ++x) {
+      const float a = static_cast<float>(sxx[x - 1] + sxx[x] + sxx[x + 1]) * 0.5f;
+      const float b = static_cast<float>(sxy[x - 1] + sxy[x] + sxy[x + 1]);
+      const float c = static_cast<float>(syy[x - 1] + syy[x] + syy[x + 1]) * 0.5f;
       out[x] = (a + c) - std::sqrt((a - c) * (a - c) + b * b);
     }
+    const uint8_t* ok = allowed.ptr<uint8_t>(y);
+    for (int x = 0; x < cols; ++x) strongest = std::max(strongest, ok[x] ? out[x] : 0.0f);
   }
+  return strongest;
 }
 
 void CornerDetector::collectLocalMaxima(const cv::Mat& allowed, float threshold) {
@@ -55,6 +97,15 @@ void CornerDetector::collectLocalMaxima(const cv::Mat& allowed, float threshold)
     const float* row = min_eigenvalue_.ptr<float>(y);
     const float* below = min_eigenvalue_.ptr<float>(y + 1);
     for (int x = 1; x + 1 < width; ++x) {
+      // Most of a masked image is not allowed: skip it eight pixels at a time.
+      if (x + 8 < width) {
+        uint64_t eight;
+        std::memcpy(&eight, ok + x, sizeof eight);
+        if (eight == 0) {
+          x += 7;
+          continue;
+        }
+      }
       const float v = row[x];
       if (!ok[x] || !(v > threshold)) continue;
       if (v < row[x - 1] || v < row[x + 1] || v < above[x - 1] || v < above[x] ||
@@ -115,12 +166,10 @@ std::vector<cv::Point2f> CornerDetector::detect(const cv::Mat& image, const cv::
   CV_Assert(image.type() == CV_8UC1 && allowed.type() == CV_8UC1 &&
             allowed.size() == image.size() && min_distance >= 1 && quality_level > 0);
   if (image.empty() || max_corners <= 0) return {};
-  computeMinEigenvalues(image);
-  double strongest = 0;
-  cv::minMaxLoc(min_eigenvalue_, nullptr, &strongest, nullptr, nullptr, allowed);
+  const float strongest = computeMinEigenvalues(image, allowed);
   if (strongest <= 0) return {};  // a flat (or fully masked) image has no corner
   // cv::threshold compares float images with the threshold cast to float.
-  collectLocalMaxima(allowed, static_cast<float>(strongest * quality_level));
+  collectLocalMaxima(allowed, static_cast<float>(static_cast<double>(strongest) * quality_level));
   return takeStrongestSpaced(image.size(), max_corners, min_distance);
 }
 

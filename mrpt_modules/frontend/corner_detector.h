@@ -25,13 +25,15 @@ class CornerDetector {
     float response;
     int index;  // y * width + x
   };
-  void computeMinEigenvalues(const cv::Mat& image);
+  /// Fills min_eigenvalue_; returns the strongest response where `allowed` (0 if none is positive).
+  float computeMinEigenvalues(const cv::Mat& image, const cv::Mat& allowed);
   void collectLocalMaxima(const cv::Mat& allowed, float threshold);
   /// Greedy over the candidates, strongest first: keeps those min_distance from every kept one.
   std::vector<cv::Point2f> takeStrongestSpaced(cv::Size size, int max_corners, double min_distance);
 
-  cv::Mat dx_, dy_, min_eigenvalue_;  // CV_32F
-  std::array<cv::Mat, 3> products_;   // CV_32F: gx², gx·gy, gy², then their 3x3 sums
+  cv::Mat dx_, dy_, min_eigenvalue_;                // CV_32F
+  std::array<std::vector<float>, 3> product_rows_;  // gx², gx·gy, gy² of three rows
+  std::array<std::vector<double>, 3> column_sums_;  // of products_ over 3 rows, padded by 1
   std::vector<Candidate> candidates_;
   std::vector<std::vector<cv::Point2f>> grid_;  // accepted corners per min_distance cell
 };

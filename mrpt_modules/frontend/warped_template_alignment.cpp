@@ -19,14 +19,30 @@ bool inside(const cv::Mat& image, double x, double y) {
   return x >= 0 && y >= 0 && x < image.cols - 1 && y < image.rows - 1;
 }
 
+/// The side x side image samples I(x + i, y + j), i, j = 0..side−1, into `out`; every sample shares
+/// the fractional part of (x, y): one set of bilinear weights. The caller keeps the patch inside.
+void samplePatch(const cv::Mat& image, double x, double y, int side, std::vector<double>& out) {
+  const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
+  const double ax = x - x0, ay = y - y0;
+  const double w00 = (1 - ax) * (1 - ay), w01 = ax * (1 - ay), w10 = (1 - ax) * ay, w11 = ax * ay;
+  out.resize(static_cast<size_t>(side) * side);
+  for (int j = 0; j < side; ++j) {
+    const uint8_t* row0 = image.ptr<uint8_t>(y0 + j) + x0;
+    const uint8_t* row1 = image.ptr<uint8_t>(y0 + j + 1) + x0;
+    double* I = &out[static_cast<size_t>(j) * side];
+    for (int i = 0; i < side; ++i)
+      I[i] = w00 * row0[i] + w01 * row0[i + 1] + w10 * row1[i] + w11 * row1[i + 1];
+  }
+}
+
 /// Zero-mean normalized cross-correlation of the template's inner side² samples (row stride
-/// `wide`, one-pixel border) with the image patch whose top-left corner is at (x0, y0).
-double zeroMeanCorrelation(const std::vector<double>& T, int wide, const cv::Mat& image, double x0,
-                           double y0, int side) {
+/// `wide`, one-pixel border) with the image samples I (row stride side).
+double zeroMeanCorrelation(const std::vector<double>& T, int wide, const std::vector<double>& I,
+                           int side) {
   double st = 0, si = 0, stt = 0, sii = 0, sti = 0;
   for (int j = 0; j < side; ++j)
     for (int i = 0; i < side; ++i) {
-      const double t = T[(j + 1) * wide + i + 1], v = sample(image, x0 + i, y0 + j);
+      const double t = T[(j + 1) * wide + i + 1], v = I[j * side + i];
       st += t, si += v, stt += t * t, sii += v * v, sti += t * v;
     }
   const double n = side * side;
@@ -67,22 +83,16 @@ std::optional<cv::Point2f> alignWarpedTemplate(const cv::Mat& birth_image, cv::P
   cv::Matx44d H_inv;
   if (cv::invert(H, H_inv, cv::DECOMP_CHOLESKY) == 0) return std::nullopt;
   double x = initial.x, y = initial.y, gain = 1, offset = 0;
+  std::vector<double> I;
   for (int iteration = 0; iteration < o.max_iterations; ++iteration) {
     if (!inside(image, x - r, y - r) || !inside(image, x + r, y + r)) return std::nullopt;
-    // Every sample I(x + v) shares the fractional part of x: one set of bilinear weights.
-    const int x0 = static_cast<int>(x) - r, y0 = static_cast<int>(y) - r;
-    const double ax = x - static_cast<int>(x), ay = y - static_cast<int>(y);
-    const double w00 = (1 - ax) * (1 - ay), w01 = ax * (1 - ay), w10 = (1 - ax) * ay, w11 = ax * ay;
+    samplePatch(image, x - r, y - r, side, I);
     cv::Vec4d g = cv::Vec4d::all(0);
     for (int j = 0; j < side; ++j) {
-      const uint8_t* row0 = image.ptr<uint8_t>(y0 + j) + x0;
-      const uint8_t* row1 = image.ptr<uint8_t>(y0 + j + 1) + x0;
       const double* t = &T[(j + 1) * wide + 1];
+      const double* Ij = &I[j * side];
       const cv::Vec4d* Jj = &J[j * side];
-      for (int i = 0; i < side; ++i) {
-        const double I = w00 * row0[i] + w01 * row0[i + 1] + w10 * row1[i] + w11 * row1[i + 1];
-        g += (I - gain * t[i] - offset) * Jj[i];
-      }
+      for (int i = 0; i < side; ++i) g += (Ij[i] - gain * t[i] - offset) * Jj[i];
     }
     const cv::Vec4d step = -(H_inv * g);
     x += step[0] / gain;  // ∂e/∂x = ∇I ≈ g ∇T
@@ -95,9 +105,9 @@ std::optional<cv::Point2f> alignWarpedTemplate(const cv::Mat& birth_image, cv::P
   // A patch that only matches with its contrast halved or doubled is not the same patch.
   if (gain < o.min_gain || gain > 1 / o.min_gain) return std::nullopt;
   // The last step may have moved the patch past the border.
-  if (!inside(image, x - r, y - r) || !inside(image, x + r, y + r) ||
-      zeroMeanCorrelation(T, wide, image, x - r, y - r, side) < o.min_correlation)
-    return std::nullopt;
+  if (!inside(image, x - r, y - r) || !inside(image, x + r, y + r)) return std::nullopt;
+  samplePatch(image, x - r, y - r, side, I);
+  if (zeroMeanCorrelation(T, wide, I, side) < o.min_correlation) return std::nullopt;
   return cv::Point2f(static_cast<float>(x), static_cast<float>(y));
 }
 
