@@ -55,7 +55,7 @@ float CornerDetector::computeMinEigenvalues(const cv::Mat& image, const cv::Mat&
   // Column sums of the three rows around y, one padded row of doubles per product.
   for (auto& sums : column_sums_) sums.resize(static_cast<size_t>(cols) + 2);
   min_eigenvalue_.create(image.size(), CV_32F);
-  float strongest = 0;
+  std::array<float, 8> lane_maxima{};
   for (int y = 0; y < rows; ++y) {
     const int above = reflect101(y - 1, rows), below = reflect101(y + 1, rows);
     for (const int row : {above, y, below}) computeProducts(row);
@@ -79,10 +79,15 @@ float CornerDetector::computeMinEigenvalues(const cv::Mat& image, const cv::Mat&
       const float c = static_cast<float>(syy[x - 1] + syy[x] + syy[x + 1]) * 0.5f;
       out[x] = (a + c) - std::sqrt((a - c) * (a - c) + b * b);
     }
+    // Eight running maxima: independent, so the loop vectorizes.
     const uint8_t* ok = allowed.ptr<uint8_t>(y);
-    for (int x = 0; x < cols; ++x) strongest = std::max(strongest, ok[x] ? out[x] : 0.0f);
+    int x = 0;
+    for (; x + 8 <= cols; x += 8)
+      for (int k = 0; k < 8; ++k)
+        lane_maxima[k] = std::max(lane_maxima[k], ok[x + k] ? out[x + k] : 0.0f);
+    for (; x < cols; ++x) lane_maxima[0] = std::max(lane_maxima[0], ok[x] ? out[x] : 0.0f);
   }
-  return strongest;
+  return *std::max_element(lane_maxima.begin(), lane_maxima.end());
 }
 
 void CornerDetector::collectLocalMaxima(const cv::Mat& allowed, float threshold) {
@@ -91,27 +96,35 @@ void CornerDetector::collectLocalMaxima(const cv::Mat& allowed, float threshold)
   // detect), a response above it that no neighbour exceeds (a zeroed neighbour never does).
   candidates_.clear();
   const int width = min_eigenvalue_.cols;
+  column_maxima_.resize(static_cast<size_t>(width));
+  is_candidate_.resize(static_cast<size_t>(width));
+  float* column_max = column_maxima_.data();
+  uint8_t* candidate = is_candidate_.data();
   for (int y = 1; y + 1 < min_eigenvalue_.rows; ++y) {
     const uint8_t* ok = allowed.ptr<uint8_t>(y);
     const float* above = min_eigenvalue_.ptr<float>(y - 1);
     const float* row = min_eigenvalue_.ptr<float>(y);
     const float* below = min_eigenvalue_.ptr<float>(y + 1);
+    // Branch-free, so both loops vectorize: v is a local maximum when it equals the maximum of
+    // its 3x3 neighbourhood.
+    for (int x = 0; x < width; ++x) column_max[x] = std::max(std::max(above[x], row[x]), below[x]);
     for (int x = 1; x + 1 < width; ++x) {
-      // Most of a masked image is not allowed: skip it eight pixels at a time.
+      const float neighbourhood =
+          std::max(std::max(column_max[x - 1], column_max[x]), column_max[x + 1]);
+      candidate[x] =
+          static_cast<uint8_t>((ok[x] != 0) & (row[x] > threshold) & (row[x] >= neighbourhood));
+    }
+    for (int x = 1; x + 1 < width; ++x) {
+      // Candidates are sparse: skip eight pixels at a time.
       if (x + 8 < width) {
         uint64_t eight;
-        std::memcpy(&eight, ok + x, sizeof eight);
+        std::memcpy(&eight, candidate + x, sizeof eight);
         if (eight == 0) {
           x += 7;
           continue;
         }
       }
-      const float v = row[x];
-      if (!ok[x] || !(v > threshold)) continue;
-      if (v < row[x - 1] || v < row[x + 1] || v < above[x - 1] || v < above[x] ||
-          v < above[x + 1] || v < below[x - 1] || v < below[x] || v < below[x + 1])
-        continue;
-      candidates_.push_back({v, y * width + x});
+      if (candidate[x]) candidates_.push_back({row[x], y * width + x});
     }
   }
 }

@@ -35,6 +35,8 @@ class CornerDetector {
   std::array<std::vector<float>, 3> product_rows_;  // gx², gx·gy, gy² of three rows
   std::array<std::vector<double>, 3> column_sums_;  // of products_ over 3 rows, padded by 1
   std::vector<Candidate> candidates_;
+  std::vector<float> column_maxima_;            // of one row's 3x1 neighbourhoods
+  std::vector<uint8_t> is_candidate_;           // one row's local maxima above the threshold
   std::vector<std::vector<cv::Point2f>> grid_;  // accepted corners per min_distance cell
 };
 
