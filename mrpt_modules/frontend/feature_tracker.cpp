@@ -248,6 +248,25 @@ cv::Mat FeatureTracker::detectionMask(const cv::Mat& taken) const {
   return allowed;
 }
 
+FeatureTracker::Track FeatureTracker::newTrack(int label, cv::Point2f corner,
+                                               cv::Point2f normalized, const cv::Mat& image) {
+  // The template (half side r + 1 with its gradient border) warped by at most max_warp_scale
+  // (refineAgainstAnchors ends tracks beyond it) reaches max_warp_scale·(r + 1)·√2 px from the
+  // birth pixel, and bilinear sampling one pixel more. A copy of that much of the birth image is
+  // kept per track: compact in memory (a whole frame per birth image is not) and samples the
+  // same pixels.
+  const int reach = static_cast<int>(std::ceil(options_.max_warp_scale *
+                                               (options_.klt_window / 2 + 1) * std::sqrt(2.0))) +
+                    1;
+  const cv::Point birth(cvRound(corner.x), cvRound(corner.y));
+  const cv::Rect patch = cv::Rect(birth.x - reach, birth.y - reach, 2 * reach + 1, 2 * reach + 1) &
+                         cv::Rect(0, 0, image.cols, image.rows);
+  // Corners lie on integer pixels: the shift to the patch's pixels is exact.
+  const cv::Point2f in_patch =
+      corner - cv::Point2f(static_cast<float>(patch.x), static_cast<float>(patch.y));
+  return {next_id_++, label, 1, corner, normalized, image(patch).clone(), in_patch, corner};
+}
+
 FeatureFrame FeatureTracker::publish(double t, double dt) {
   FeatureFrame frame;
   frame.t = t;
@@ -294,7 +313,6 @@ FeatureFrame FeatureTracker::track(double t, const cv::Mat& raw_image, const cv:
   }
   if (!options_.use_masks) mask = cv::Mat(image.size(), CV_8U, cv::Scalar(0));
 
-  image = image.clone();  // kept as the birth image of this frame's new tracks
   computeUniformRegions(mask);
   cv::buildOpticalFlowPyramid(image, pyramid_, cv::Size(options_.klt_window, options_.klt_window),
                               options_.klt_levels, true);
@@ -332,8 +350,7 @@ FeatureFrame FeatureTracker::track(double t, const cv::Mat& raw_image, const cv:
       const int label = options_.use_masks
                             ? raw_mask.at<uint8_t>(cvRound(corners[i].y), cvRound(corners[i].x))
                             : 0;
-      spaced.push_back(
-          {next_id_++, label, 1, corners[i], normalized[i], image, corners[i], corners[i]});
+      spaced.push_back(newTrack(label, corners[i], normalized[i], image));
     }
   }
   previous_ = tracks_;

@@ -63,9 +63,9 @@ class FeatureTracker {
   struct Track {
     int id, plane_id, length;
     cv::Point2f pixel, normalized;
-    cv::Mat anchor;                         // the image it was born in
-    cv::Point2f anchor_pixel;               // where it was born
-    cv::Point2f from;                       // pixel in the previous frame
+    cv::Mat anchor;            // the part of its birth image its warped template can reach
+    cv::Point2f anchor_pixel;  // where it was born, in the pixels of `anchor`
+    cv::Point2f from;          // pixel in the previous frame
     cv::Matx22d warp = cv::Matx22d::eye();  // offsets around the birth pixel → current offsets
   };
   using PlaneHomographies = std::map<int, cv::Matx33d>;  // plane → previous-to-current (pixels)
@@ -81,6 +81,7 @@ class FeatureTracker {
   std::vector<cv::Point2f> detectCorners(const cv::Mat& image, const cv::Mat& allowed, int wanted);
   void computeUniformRegions(const cv::Mat& mask);
   FeatureFrame publish(double t, double dt);
+  Track newTrack(int label, cv::Point2f corner, cv::Point2f normalized, const cv::Mat& image);
 
   CameraIntrinsics camera_;
   TrackerOptions options_;
