@@ -187,15 +187,28 @@ FeatureTracker::PlaneHomographies FeatureTracker::rejectOutliers(std::vector<Tra
 
 namespace {
 
-/// Pixels whose neighbourhood (square of side kernel, `iterations` times) carries only their own
-/// label, and that label is a plane: per-plane erosion in two passes (min == max of the labels).
-cv::Mat uniformPlaneRegion(const cv::Mat& mask, int kernel, int iterations) {
-  if (iterations <= 0 || kernel <= 1) return (mask > 0) & (mask < 255);
-  const cv::Mat k = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(kernel, kernel));
-  cv::Mat lo, hi;
-  cv::erode(mask, lo, k, cv::Point(-1, -1), iterations, cv::BORDER_REPLICATE);
-  cv::dilate(mask, hi, k, cv::Point(-1, -1), iterations, cv::BORDER_REPLICATE);
-  return (lo == hi) & (mask > 0) & (mask < 255);
+/// Into `region` (255 / 0): pixels whose neighbourhood (square of side kernel, `iterations` times)
+/// carries only their own label, and that label is a plane: per-plane erosion in two passes
+/// (min == max of the labels). `lowest`, `highest`: buffers for the two passes, kept by the caller.
+void uniformPlaneRegion(const cv::Mat& mask, int kernel, int iterations, cv::Mat& lowest,
+                        cv::Mat& highest, cv::Mat& region) {
+  const bool eroded = iterations > 0 && kernel > 1;
+  if (eroded) {
+    const cv::Mat k = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(kernel, kernel));
+    cv::erode(mask, lowest, k, cv::Point(-1, -1), iterations, cv::BORDER_REPLICATE);
+    cv::dilate(mask, highest, k, cv::Point(-1, -1), iterations, cv::BORDER_REPLICATE);
+  }
+  region.create(mask.size(), CV_8U);
+  for (int y = 0; y < mask.rows; ++y) {
+    const uint8_t* label = mask.ptr<uint8_t>(y);
+    const uint8_t* lo = eroded ? lowest.ptr<uint8_t>(y) : label;
+    const uint8_t* hi = eroded ? highest.ptr<uint8_t>(y) : label;
+    uint8_t* out = region.ptr<uint8_t>(y);
+    // A plane label is 1..254: label − 1 wraps 0 to 255 and leaves 255 at 254.
+    for (int x = 0; x < mask.cols; ++x)
+      out[x] = static_cast<uint8_t>(
+          -static_cast<int>((lo[x] == hi[x]) & (static_cast<uint8_t>(label[x] - 1) < 254)));
+  }
 }
 
 }  // namespace
@@ -206,7 +219,8 @@ void FeatureTracker::computeUniformRegions(const cv::Mat& mask) {
     trackable_ = detectable_;
     return;
   }
-  trackable_ = uniformPlaneRegion(mask, 2 * options_.window_margin + 1, 1);
+  uniformPlaneRegion(mask, 2 * options_.window_margin + 1, 1, lowest_label_, highest_label_,
+                     trackable_);
   // Trackable pixels are uniform over the window margin; an erosion reaching no further changes
   // nothing.
   const int erosion_reach = options_.erosion_kernel / 2 * options_.erosion_iterations;
@@ -214,7 +228,9 @@ void FeatureTracker::computeUniformRegions(const cv::Mat& mask) {
     detectable_ = trackable_;
     return;
   }
-  detectable_ = uniformPlaneRegion(mask, options_.erosion_kernel, options_.erosion_iterations);
+  if (detectable_.data == trackable_.data) detectable_.release();
+  uniformPlaneRegion(mask, options_.erosion_kernel, options_.erosion_iterations, lowest_label_,
+                     highest_label_, detectable_);
   detectable_ &= trackable_;
 }
 
@@ -236,8 +252,9 @@ std::vector<cv::Point2f> FeatureTracker::detectCorners(const cv::Mat& image, con
   return corners;
 }
 
-cv::Mat FeatureTracker::detectionMask(const cv::Mat& taken) const {
-  cv::Mat allowed = detectable_.clone();
+const cv::Mat& FeatureTracker::detectionMask(const cv::Mat& taken) {
+  cv::Mat& allowed = allowed_;
+  detectable_.copyTo(allowed);
   allowed.setTo(0, taken);
   // Corners whose birth patch would leave the image could not be anchored.
   const int border = std::min({options_.klt_window / 2 + 2, allowed.cols / 2, allowed.rows / 2});
@@ -327,7 +344,9 @@ FeatureFrame FeatureTracker::track(double t, const cv::Mat& raw_image, const cv:
   std::stable_sort(kept.begin(), kept.end(),
                    [](const Track& a, const Track& b) { return a.length > b.length; });
   std::vector<Track> spaced;
-  cv::Mat taken(image.size(), CV_8U, cv::Scalar(0));
+  cv::Mat& taken = taken_;
+  taken.create(image.size(), CV_8U);
+  taken.setTo(0);
   for (const Track& tr : kept) {
     if (taken.at<uint8_t>(cvRound(tr.pixel.y), cvRound(tr.pixel.x))) continue;
     spaced.push_back(tr);
@@ -337,7 +356,7 @@ FeatureFrame FeatureTracker::track(double t, const cv::Mat& raw_image, const cv:
 
   const int wanted = options_.max_features - static_cast<int>(spaced.size());
   if (wanted > 0) {
-    const cv::Mat allowed = detectionMask(taken);
+    const cv::Mat& allowed = detectionMask(taken);
     std::vector<cv::Point2f> corners;
     if (cv::countNonZero(allowed) > 0) {
       corners = detectCorners(image, allowed, wanted);

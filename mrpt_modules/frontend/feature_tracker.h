@@ -77,7 +77,7 @@ class FeatureTracker {
                             const cv::Mat& image) const;
   PlaneHomographies rejectOutliers(std::vector<Track>& tracks) const;
   /// Where new corners may go: detectable, not `taken` by a kept track, away from the border.
-  cv::Mat detectionMask(const cv::Mat& taken) const;
+  const cv::Mat& detectionMask(const cv::Mat& taken);
   std::vector<cv::Point2f> detectCorners(const cv::Mat& image, const cv::Mat& allowed, int wanted);
   void computeUniformRegions(const cv::Mat& mask);
   FeatureFrame publish(double t, double dt);
@@ -95,6 +95,9 @@ class FeatureTracker {
   double previous_t_ = 0;
   cv::Mat detectable_;  // plane pixels after the per-plane erosion
   cv::Mat trackable_;   // plane pixels with no other label within window_margin
+  // Image-sized buffers kept between frames (no per-frame allocation): the neighbourhoods'
+  // lowest and highest labels, the neighbourhoods of kept tracks, where corners may go.
+  cv::Mat lowest_label_, highest_label_, taken_, allowed_;
   int next_id_ = 0;
   std::vector<std::string> warnings_, warned_;
 };
