@@ -199,15 +199,15 @@ void uniformPlaneRegion(const cv::Mat& mask, int kernel, int iterations, cv::Mat
     cv::dilate(mask, highest, k, cv::Point(-1, -1), iterations, cv::BORDER_REPLICATE);
   }
   region.create(mask.size(), CV_8U);
+  const int cols = mask.cols;
   for (int y = 0; y < mask.rows; ++y) {
     const uint8_t* label = mask.ptr<uint8_t>(y);
     const uint8_t* lo = eroded ? lowest.ptr<uint8_t>(y) : label;
     const uint8_t* hi = eroded ? highest.ptr<uint8_t>(y) : label;
     uint8_t* out = region.ptr<uint8_t>(y);
-    // A plane label is 1..254: label − 1 wraps 0 to 255 and leaves 255 at 254.
-    for (int x = 0; x < mask.cols; ++x)
-      out[x] = static_cast<uint8_t>(
-          -static_cast<int>((lo[x] == hi[x]) & (static_cast<uint8_t>(label[x] - 1) < 254)));
+    // Non-short-circuit tests and a loop bound in a local: the loop vectorizes.
+    for (int x = 0; x < cols; ++x)
+      out[x] = (lo[x] == hi[x]) & (label[x] != 0) & (label[x] != 255) ? 255 : 0;
   }
 }
 
