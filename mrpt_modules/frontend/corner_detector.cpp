@@ -24,7 +24,7 @@ float CornerDetector::computeMinEigenvalues(const cv::Mat& image, const cv::Mat&
   // block (border reflected), and the smaller eigenvalue of [[xx, xy], [xy, yy]] as
   // (a + c) - sqrt((a - c)² + b²) with a = xx / 2, b = xy, c = yy / 2.
   // cv::boxFilter sums float images in double and rounds the sum to float. A non-zero product is
-  // within [s², 2^21 s²] (s the scale; 8-bit Sobel responses are integers below 2^10), so as
+  // within [s²/2, 2^21 s²] (s the scale; 8-bit Sobel responses are integers below 2^10), so as
   // floats the nine of a block are multiples of one power of two and their sum stays below 2^50
   // of it: the double sum is exact in any order and rounds to boxFilter's float bit for bit.
   const double scale = 1.0 / (4 * 3 * 255.0);
@@ -79,7 +79,7 @@ float CornerDetector::computeMinEigenvalues(const cv::Mat& image, const cv::Mat&
       const float c = static_cast<float>(syy[x - 1] + syy[x] + syy[x + 1]) * 0.5f;
       out[x] = (a + c) - std::sqrt((a - c) * (a - c) + b * b);
     }
-    // Eight running maxima: independent, so the loop vectorizes.
+    // Eight independent running maxima: no single chain of dependent max operations.
     const uint8_t* ok = allowed.ptr<uint8_t>(y);
     int x = 0;
     for (; x + 8 <= cols; x += 8)

@@ -33,7 +33,7 @@ class CornerDetector {
 
   cv::Mat dx_, dy_, min_eigenvalue_;                // CV_32F
   std::array<std::vector<float>, 3> product_rows_;  // gx², gx·gy, gy² of three rows
-  std::array<std::vector<double>, 3> column_sums_;  // of products_ over 3 rows, padded by 1
+  std::array<std::vector<double>, 3> column_sums_;  // of product_rows_ over 3 rows, padded by 1
   std::vector<Candidate> candidates_;
   std::vector<float> column_maxima_;            // of one row's 3x1 neighbourhoods
   std::vector<uint8_t> is_candidate_;           // one row's local maxima above the threshold
