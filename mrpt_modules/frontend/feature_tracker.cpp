@@ -228,7 +228,6 @@ void FeatureTracker::computeUniformRegions(const cv::Mat& mask) {
     detectable_ = trackable_;
     return;
   }
-  if (detectable_.data == trackable_.data) detectable_.release();
   uniformPlaneRegion(mask, options_.erosion_kernel, options_.erosion_iterations, lowest_label_,
                      highest_label_, detectable_);
   detectable_ &= trackable_;
