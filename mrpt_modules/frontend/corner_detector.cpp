@@ -18,21 +18,66 @@ int reflect101(int i, int n) {
 
 }  // namespace
 
+void CornerDetector::findSpans(const cv::Mat& allowed) {
+  // near[y][c]: chunk c of row y holds an allowed pixel or borders one (one column beyond).
+  const int rows = allowed.rows, cols = allowed.cols, chunks = (cols + kChunk - 1) / kChunk;
+  near_allowed_.resize(static_cast<size_t>(rows) * chunks);
+  for (int y = 0; y < rows; ++y) {
+    const uint8_t* ok = allowed.ptr<uint8_t>(y);
+    uint8_t* near = &near_allowed_[static_cast<size_t>(y) * chunks];
+    for (int c = 0; c < chunks; ++c) {
+      const int begin = std::max(0, c * kChunk - 1), end = std::min(cols, (c + 1) * kChunk + 1);
+      uint8_t any = 0;
+      for (int x = begin; x < end; ++x) any |= ok[x];
+      near[c] = any;
+    }
+  }
+  // Runs of consecutive chunks near an allowed pixel of rows y − reach ... y + reach.
+  needed_.resize(static_cast<size_t>(chunks));
+  const auto collect = [&](int reach, RowSpans& out) {
+    out.first.assign(static_cast<size_t>(rows) + 1, 0);
+    out.spans.clear();
+    for (int y = 0; y < rows; ++y) {
+      out.first[y] = static_cast<int>(out.spans.size());
+      std::fill(needed_.begin(), needed_.end(), 0);
+      for (int r = std::max(0, y - reach); r <= std::min(rows - 1, y + reach); ++r)
+        for (int c = 0; c < chunks; ++c)
+          needed_[c] |= near_allowed_[static_cast<size_t>(r) * chunks + c];
+      for (int c = 0; c < chunks;) {
+        if (!needed_[c]) {
+          ++c;
+          continue;
+        }
+        const int begin = c;
+        while (c < chunks && needed_[c]) ++c;
+        out.spans.push_back({begin * kChunk, std::min(cols, c * kChunk)});
+      }
+    }
+    out.first[rows] = static_cast<int>(out.spans.size());
+  };
+  // A response is read at an allowed pixel and its eight neighbours (the 3x3 local maximum); it
+  // sums the products of the rows above and below.
+  collect(1, responses_);
+  collect(2, products_);
+}
+
 float CornerDetector::computeMinEigenvalues(const cv::Mat& image, const cv::Mat& allowed) {
-  // cv::cornerMinEigenVal(image, ·, 3, 3) in one pass over kept buffers: Sobel gradients scaled by
-  // 1 / (2^(aperture-1) · block · 255), their float products gx², gx·gy, gy² summed over the 3x3
-  // block (border reflected), and the smaller eigenvalue of [[xx, xy], [xy, yy]] as
-  // (a + c) - sqrt((a - c)² + b²) with a = xx / 2, b = xy, c = yy / 2.
+  // cv::cornerMinEigenVal(image, ·, 3, 3) in one pass over kept buffers, where responses are
+  // read (findSpans): Sobel gradients scaled by 1 / (2^(aperture-1) · block · 255), their float
+  // products gx², gx·gy, gy² summed over the 3x3 block (border reflected), and the smaller
+  // eigenvalue of [[xx, xy], [xy, yy]] as (a + c) - sqrt((a - c)² + b²) with a = xx / 2, b = xy,
+  // c = yy / 2.
   // cv::boxFilter sums float images in double and rounds the sum to float. A non-zero product is
   // within [s²/2, 2^21 s²] (s the scale; 8-bit Sobel responses are integers below 2^10), so as
   // floats the nine of a block are multiples of one power of two and their sum stays below 2^50
   // of it: the double sum is exact in any order and rounds to boxFilter's float bit for bit.
+  findSpans(allowed);
   const double scale = 1.0 / (4 * 3 * 255.0);
   cv::Sobel(image, dx_, CV_32F, 1, 0, 3, scale, 0, cv::BORDER_DEFAULT);
   cv::Sobel(image, dy_, CV_32F, 0, 1, 3, scale, 0, cv::BORDER_DEFAULT);
   const int rows = image.rows, cols = image.cols;
   // Products of the three rows around y, in a ring of three rows per product (slot = row % 3):
-  // small enough to stay in cache, each row computed once.
+  // small enough to stay in cache, each row computed once, over its spans and one column beyond.
   for (auto& ring : product_rows_) ring.resize(3 * static_cast<size_t>(cols));
   std::array<int, 3> row_in_slot{-1, -1, -1};
   const auto productRow = [&](size_t product, int row) {
@@ -46,46 +91,52 @@ float CornerDetector::computeMinEigenvalues(const cv::Mat& image, const cv::Mat&
     float* xx = productRow(0, row);
     float* xy = productRow(1, row);
     float* yy = productRow(2, row);
-    for (int x = 0; x < cols; ++x) {
-      xx[x] = gx[x] * gx[x];
-      xy[x] = gx[x] * gy[x];
-      yy[x] = gy[x] * gy[x];
-    }
+    for (const Span& span : products_.of(row))
+      for (int x = std::max(0, span.begin - 1), end = std::min(cols, span.end + 1); x < end; ++x) {
+        xx[x] = gx[x] * gx[x];
+        xy[x] = gx[x] * gy[x];
+        yy[x] = gy[x] * gy[x];
+      }
   };
   // Column sums of the three rows around y, one padded row of doubles per product.
   for (auto& sums : column_sums_) sums.resize(static_cast<size_t>(cols) + 2);
-  min_eigenvalue_.create(image.size(), CV_32F);
+  // Responses outside the spans are never read; zeros until a first frame writes them.
+  if (min_eigenvalue_.size() != image.size())
+    min_eigenvalue_ = cv::Mat::zeros(image.size(), CV_32F);
   std::array<float, 8> lane_maxima{};
   for (int y = 0; y < rows; ++y) {
+    if (responses_.of(y).empty()) continue;
     const int above = reflect101(y - 1, rows), below = reflect101(y + 1, rows);
     for (const int row : {above, y, below}) computeProducts(row);
-    for (size_t p = 0; p < product_rows_.size(); ++p) {
-      const float* r0 = productRow(p, above);
-      const float* r1 = productRow(p, y);
-      const float* r2 = productRow(p, below);
-      double* sums = column_sums_[p].data() + 1;
-      for (int x = 0; x < cols; ++x)
-        sums[x] = static_cast<double>(r0[x]) + static_cast<double>(r1[x]) + r2[x];
-      sums[-1] = sums[reflect101(-1, cols)];
-      sums[cols] = sums[reflect101(cols, cols)];
-    }
-    const double* sxx = column_sums_[0].data() + 1;
-    const double* sxy = column_sums_[1].data() + 1;
-    const double* syy = column_sums_[2].data() + 1;
     float* out = min_eigenvalue_.ptr<float>(y);
-    for (int x = 0; x < cols; ++x) {
-      const float a = static_cast<float>(sxx[x - 1] + sxx[x] + sxx[x + 1]) * 0.5f;
-      const float b = static_cast<float>(sxy[x - 1] + sxy[x] + sxy[x + 1]);
-      const float c = static_cast<float>(syy[x - 1] + syy[x] + syy[x + 1]) * 0.5f;
-      out[x] = (a + c) - std::sqrt((a - c) * (a - c) + b * b);
-    }
-    // Eight independent running maxima: no single chain of dependent max operations.
     const uint8_t* ok = allowed.ptr<uint8_t>(y);
-    int x = 0;
-    for (; x + 8 <= cols; x += 8)
-      for (int k = 0; k < 8; ++k)
-        lane_maxima[k] = std::max(lane_maxima[k], ok[x + k] ? out[x + k] : 0.0f);
-    for (; x < cols; ++x) lane_maxima[0] = std::max(lane_maxima[0], ok[x] ? out[x] : 0.0f);
+    for (const Span& span : responses_.of(y)) {
+      for (size_t p = 0; p < product_rows_.size(); ++p) {
+        const float* r0 = productRow(p, above);
+        const float* r1 = productRow(p, y);
+        const float* r2 = productRow(p, below);
+        double* sums = column_sums_[p].data() + 1;
+        for (int x = std::max(0, span.begin - 1), end = std::min(cols, span.end + 1); x < end; ++x)
+          sums[x] = static_cast<double>(r0[x]) + static_cast<double>(r1[x]) + r2[x];
+        if (span.begin == 0) sums[-1] = sums[reflect101(-1, cols)];
+        if (span.end == cols) sums[cols] = sums[reflect101(cols, cols)];
+      }
+      const double* sxx = column_sums_[0].data() + 1;
+      const double* sxy = column_sums_[1].data() + 1;
+      const double* syy = column_sums_[2].data() + 1;
+      for (int x = span.begin; x < span.end; ++x) {
+        const float a = static_cast<float>(sxx[x - 1] + sxx[x] + sxx[x + 1]) * 0.5f;
+        const float b = static_cast<float>(sxy[x - 1] + sxy[x] + sxy[x + 1]);
+        const float c = static_cast<float>(syy[x - 1] + syy[x] + syy[x + 1]) * 0.5f;
+        out[x] = (a + c) - std::sqrt((a - c) * (a - c) + b * b);
+      }
+      // Eight independent running maxima: no single chain of dependent max operations.
+      int x = span.begin;
+      for (; x + 8 <= span.end; x += 8)
+        for (int k = 0; k < 8; ++k)
+          lane_maxima[k] = std::max(lane_maxima[k], ok[x + k] ? out[x + k] : 0.0f);
+      for (; x < span.end; ++x) lane_maxima[0] = std::max(lane_maxima[0], ok[x] ? out[x] : 0.0f);
+    }
   }
   return *std::max_element(lane_maxima.begin(), lane_maxima.end());
 }
@@ -94,6 +145,7 @@ void CornerDetector::collectLocalMaxima(const cv::Mat& allowed, float threshold)
   // goodFeaturesToTrack zeroes responses <= threshold, then keeps allowed non-zero pixels equal to
   // their 3x3 dilation (image border rows and columns excluded): with a positive threshold (see
   // detect), a response above it that no neighbour exceeds (a zeroed neighbour never does).
+  // Allowed pixels and their neighbours lie in the responses' spans.
   candidates_.clear();
   const int width = min_eigenvalue_.cols;
   column_maxima_.resize(static_cast<size_t>(width));
@@ -105,26 +157,30 @@ void CornerDetector::collectLocalMaxima(const cv::Mat& allowed, float threshold)
     const float* above = min_eigenvalue_.ptr<float>(y - 1);
     const float* row = min_eigenvalue_.ptr<float>(y);
     const float* below = min_eigenvalue_.ptr<float>(y + 1);
-    // Branch-free, so both loops vectorize: v is a local maximum when it equals the maximum of
-    // its 3x3 neighbourhood.
-    for (int x = 0; x < width; ++x) column_max[x] = std::max(std::max(above[x], row[x]), below[x]);
-    for (int x = 1; x + 1 < width; ++x) {
-      const float neighbourhood =
-          std::max(std::max(column_max[x - 1], column_max[x]), column_max[x + 1]);
-      candidate[x] =
-          static_cast<uint8_t>((ok[x] != 0) & (row[x] > threshold) & (row[x] >= neighbourhood));
-    }
-    for (int x = 1; x + 1 < width; ++x) {
-      // Candidates are sparse: skip eight pixels at a time.
-      if (x + 8 < width) {
-        uint64_t eight;
-        std::memcpy(&eight, candidate + x, sizeof eight);
-        if (eight == 0) {
-          x += 7;
-          continue;
-        }
+    for (const Span& span : responses_.of(y)) {
+      const int begin = std::max(1, span.begin), end = std::min(width - 1, span.end);
+      // Branch-free, so both loops vectorize: v is a local maximum when it equals the maximum of
+      // its 3x3 neighbourhood.
+      for (int x = begin - 1; x < end + 1; ++x)
+        column_max[x] = std::max(std::max(above[x], row[x]), below[x]);
+      for (int x = begin; x < end; ++x) {
+        const float neighbourhood =
+            std::max(std::max(column_max[x - 1], column_max[x]), column_max[x + 1]);
+        candidate[x] =
+            static_cast<uint8_t>((ok[x] != 0) & (row[x] > threshold) & (row[x] >= neighbourhood));
       }
-      if (candidate[x]) candidates_.push_back({row[x], y * width + x});
+      for (int x = begin; x < end; ++x) {
+        // Candidates are sparse: skip eight pixels at a time.
+        if (x + 8 < end) {
+          uint64_t eight;
+          std::memcpy(&eight, candidate + x, sizeof eight);
+          if (eight == 0) {
+            x += 7;
+            continue;
+          }
+        }
+        if (candidate[x]) candidates_.push_back({row[x], y * width + x});
+      }
     }
   }
 }

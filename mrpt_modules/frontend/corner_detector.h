@@ -25,6 +25,25 @@ class CornerDetector {
     float response;
     int index;  // y * width + x
   };
+  struct Span {
+    int begin, end;  // columns [begin, end)
+  };
+  /// Column spans per image row, row y's in spans[first[y] .. first[y + 1]).
+  struct RowSpans {
+    std::vector<int> first;
+    std::vector<Span> spans;
+    struct Range {
+      const Span *first, *last;
+      const Span* begin() const { return first; }
+      const Span* end() const { return last; }
+      bool empty() const { return first == last; }
+    };
+    Range of(int y) const { return {spans.data() + first[y], spans.data() + first[y + 1]}; }
+  };
+  static constexpr int kChunk = 16;  // columns: the granularity of the spans
+  /// The spans (of kChunk-column chunks) where responses and gradient products are needed to
+  /// test the allowed pixels.
+  void findSpans(const cv::Mat& allowed);
   /// Fills min_eigenvalue_; returns the strongest response where `allowed` (0 if none is positive).
   float computeMinEigenvalues(const cv::Mat& image, const cv::Mat& allowed);
   void collectLocalMaxima(const cv::Mat& allowed, float threshold);
@@ -34,6 +53,8 @@ class CornerDetector {
   cv::Mat dx_, dy_, min_eigenvalue_;                // CV_32F
   std::array<std::vector<float>, 3> product_rows_;  // gx², gx·gy, gy² of three rows
   std::array<std::vector<double>, 3> column_sums_;  // of product_rows_ over 3 rows, padded by 1
+  std::vector<uint8_t> near_allowed_, needed_;      // per row and chunk; per chunk
+  RowSpans responses_, products_;
   std::vector<Candidate> candidates_;
   std::vector<float> column_maxima_;            // of one row's 3x1 neighbourhoods
   std::vector<uint8_t> is_candidate_;           // one row's local maxima above the threshold

@@ -89,6 +89,31 @@ TEST(CornerDetector, BuffersFollowTheImageSize) {
     expectSameCorners(detector, image, cv::Mat(image.size(), CV_8U, cv::Scalar(255)), 150, 20.0);
 }
 
+TEST(CornerDetector, MasksThatChangeBetweenCallsAndTouchTheBorder) {
+  // Responses are computed only near allowed pixels: masks that move between calls on one
+  // detector, allowed pixels in the first and last rows and columns, a width that is not a
+  // multiple of the 16-column chunks.
+  const cv::Mat full = graf();
+  ASSERT_FALSE(full.empty());
+  const cv::Mat image = full(cv::Rect(101, 67, 333, 247)).clone();
+  cv::Mat edges(image.size(), CV_8U, cv::Scalar(0));
+  edges.colRange(0, 9) = 255;
+  edges.colRange(image.cols - 5, image.cols) = 255;
+  edges.rowRange(0, 3) = 255;
+  edges.rowRange(image.rows - 7, image.rows) = 255;
+  cv::Mat islands(image.size(), CV_8U, cv::Scalar(0));
+  for (int k = 0; k < 25; ++k)
+    cv::circle(islands, {(k * 97) % image.cols, (k * 61) % image.rows}, 5 + k % 13, cv::Scalar(255),
+               cv::FILLED);
+  // Single allowed columns on both sides of chunk edges: their neighbours are in other chunks.
+  cv::Mat columns(image.size(), CV_8U, cv::Scalar(0));
+  for (const int x : {15, 48, 111, 144, 200, image.cols - 1}) columns.col(x) = 255;
+  CornerDetector detector;
+  for (const cv::Mat& allowed : {edges, islands, columns, edges, columns, islands})
+    for (const double min_distance : {1.0, 12.0})
+      expectSameCorners(detector, image, allowed, 300, min_distance);
+}
+
 TEST(CornerDetector, NoCornerOnAFlatOrFullyMaskedImage) {
   CornerDetector detector;
   const cv::Mat flat(480, 640, CV_8U, cv::Scalar(90));
