@@ -61,25 +61,41 @@ std::optional<cv::Point2f> alignWarpedTemplate(const cv::Mat& birth_image, cv::P
   const cv::Matx22d to_birth = warp.inv();
   const int r = o.half_window, side = 2 * r + 1, wide = side + 2;
   // Template T(v) = I_birth(x_birth + W⁻¹ v) on the integer offsets v of the current image (one
-  // pixel wider for its central-difference gradient).
+  // pixel wider for its central-difference gradient). The map is affine: when the four corners
+  // are inside, every sample is.
+  const auto birthPoint = [&](int i, int j) {
+    const cv::Vec2d u = to_birth * cv::Vec2d(i, j);
+    return cv::Vec2d(birth_pixel.x + u[0], birth_pixel.y + u[1]);
+  };
+  for (const int j : {-r - 1, r + 1})
+    for (const int i : {-r - 1, r + 1})
+      if (const cv::Vec2d p = birthPoint(i, j); !inside(birth_image, p[0], p[1]))
+        return std::nullopt;
   std::vector<double> T(wide * wide);
   for (int j = -r - 1; j <= r + 1; ++j)
     for (int i = -r - 1; i <= r + 1; ++i) {
-      const cv::Vec2d u = to_birth * cv::Vec2d(i, j);
-      const double x = birth_pixel.x + u[0], y = birth_pixel.y + u[1];
-      if (!inside(birth_image, x, y)) return std::nullopt;
-      T[(j + r + 1) * wide + i + r + 1] = sample(birth_image, x, y);
+      const cv::Vec2d p = birthPoint(i, j);
+      T[(j + r + 1) * wide + i + r + 1] = sample(birth_image, p[0], p[1]);
     }
   // Residual e(v) = I(x + v) − g T(v) − b; unknowns (x, y, g, b). Inverse-compositional style: the
-  // Jacobian (∇T, −T, −1) is the template's, so the normal matrix is built once.
-  std::vector<cv::Vec4d> J(side * side);
-  cv::Matx44d H = cv::Matx44d::zeros();
+  // Jacobian J = (∇T, −T, −1) is the template's, so the normal matrix Σ J Jᵀ is built once.
+  const size_t n = static_cast<size_t>(side) * side;
+  std::vector<double> Tx(n), Ty(n);
+  double xx = 0, xy = 0, xt = 0, x1 = 0, yy = 0, yt = 0, y1 = 0, tt = 0, t1 = 0;
   for (int j = 0; j < side; ++j)
     for (int i = 0; i < side; ++i) {
       const double* t = &T[(j + 1) * wide + i + 1];
-      J[j * side + i] = cv::Vec4d(0.5 * (t[1] - t[-1]), 0.5 * (t[wide] - t[-wide]), -t[0], -1);
-      H += J[j * side + i] * J[j * side + i].t();
+      const double gx = 0.5 * (t[1] - t[-1]), gy = 0.5 * (t[wide] - t[-wide]);
+      Tx[j * side + i] = gx;
+      Ty[j * side + i] = gy;
+      xx += gx * gx, xy += gx * gy, xt += gx * t[0], x1 += gx;
+      yy += gy * gy, yt += gy * t[0], y1 += gy;
+      tt += t[0] * t[0], t1 += t[0];
     }
+  const cv::Matx44d H(xx, xy, -xt, -x1,  //
+                      xy, yy, -yt, -y1,  //
+                      -xt, -yt, tt, t1,  //
+                      -x1, -y1, t1, static_cast<double>(n));
   cv::Matx44d H_inv;
   if (cv::invert(H, H_inv, cv::DECOMP_CHOLESKY) == 0) return std::nullopt;
   double x = initial.x, y = initial.y, gain = 1, offset = 0;
@@ -87,13 +103,19 @@ std::optional<cv::Point2f> alignWarpedTemplate(const cv::Mat& birth_image, cv::P
   for (int iteration = 0; iteration < o.max_iterations; ++iteration) {
     if (!inside(image, x - r, y - r) || !inside(image, x + r, y + r)) return std::nullopt;
     samplePatch(image, x - r, y - r, side, I);
-    cv::Vec4d g = cv::Vec4d::all(0);
+    // Gauss–Newton gradient Σ e J.
+    double gx = 0, gy = 0, gt = 0, g1 = 0;
     for (int j = 0; j < side; ++j) {
       const double* t = &T[(j + 1) * wide + 1];
       const double* Ij = &I[j * side];
-      const cv::Vec4d* Jj = &J[j * side];
-      for (int i = 0; i < side; ++i) g += (Ij[i] - gain * t[i] - offset) * Jj[i];
+      const double* Txj = &Tx[j * side];
+      const double* Tyj = &Ty[j * side];
+      for (int i = 0; i < side; ++i) {
+        const double e = Ij[i] - gain * t[i] - offset;
+        gx += e * Txj[i], gy += e * Tyj[i], gt -= e * t[i], g1 -= e;
+      }
     }
+    const cv::Vec4d g(gx, gy, gt, g1);
     const cv::Vec4d step = -(H_inv * g);
     x += step[0] / gain;  // ∂e/∂x = ∇I ≈ g ∇T
     y += step[1] / gain;
