@@ -100,12 +100,11 @@ std::vector<FeatureTracker::Track> FeatureTracker::propagate(const Pyramid& pyra
   cv::calcOpticalFlowPyrLK(previous_pyramid_, pyramid, from, to, status, err, window,
                            options_.klt_levels, stop, 0, options_.klt_min_eigenvalue);
   // The backward pass starts where a consistent track must end (its origin), so it needs no
-  // coarse levels: one level absorbs up to a few pixels of inconsistency, beyond which the
-  // track is rejected anyway.
+  // coarse level: the full-resolution window converges from a few pixels away, and a track
+  // more than max_forward_backward_px inconsistent is rejected anyway.
   back = from;
-  cv::calcOpticalFlowPyrLK(pyramid, previous_pyramid_, to, back, back_status, err, window,
-                           std::min(options_.klt_levels, 1), stop, cv::OPTFLOW_USE_INITIAL_FLOW,
-                           options_.klt_min_eigenvalue);
+  cv::calcOpticalFlowPyrLK(pyramid, previous_pyramid_, to, back, back_status, err, window, 0, stop,
+                           cv::OPTFLOW_USE_INITIAL_FLOW, options_.klt_min_eigenvalue);
   const cv::Rect inside(1, 1, mask.cols - 2, mask.rows - 2);
   for (size_t i = 0; i < tracks_.size(); ++i) {
     if (!status[i] || !back_status[i] || !inside.contains(to[i])) continue;
