@@ -21,35 +21,50 @@ int reflect101(int i, int n) {
 void CornerDetector::findSpans(const cv::Mat& allowed) {
   // near[y][c]: chunk c of row y holds an allowed pixel or borders one (one column beyond).
   const int rows = allowed.rows, cols = allowed.cols, chunks = (cols + kChunk - 1) / kChunk;
-  near_allowed_.resize(static_cast<size_t>(rows) * chunks);
+  const size_t cells = static_cast<size_t>(rows) * chunks;
+  near_allowed_.resize(cells);
   for (int y = 0; y < rows; ++y) {
     const uint8_t* ok = allowed.ptr<uint8_t>(y);
     uint8_t* near = &near_allowed_[static_cast<size_t>(y) * chunks];
     for (int c = 0; c < chunks; ++c) {
-      const int begin = std::max(0, c * kChunk - 1), end = std::min(cols, (c + 1) * kChunk + 1);
-      uint8_t any = 0;
-      for (int x = begin; x < end; ++x) any |= ok[x];
+      const int begin = c * kChunk, end = std::min(cols, begin + kChunk);
+      uint8_t any = (begin > 0 ? ok[begin - 1] : 0) | (end < cols ? ok[end] : 0);
+      if (end - begin == kChunk) {
+        uint64_t first, second;  // the chunk's 16 bytes, two words at a time
+        std::memcpy(&first, ok + begin, sizeof first);
+        std::memcpy(&second, ok + begin + 8, sizeof second);
+        any |= static_cast<uint8_t>((first | second) != 0);
+      } else {
+        for (int x = begin; x < end; ++x) any |= ok[x];
+      }
       near[c] = any;
     }
   }
-  // Runs of consecutive chunks near an allowed pixel of rows y − reach ... y + reach.
-  needed_.resize(static_cast<size_t>(chunks));
-  const auto collect = [&](int reach, RowSpans& out) {
+  // Flags of rows y − 1 ... y + 1 or'ed into row y.
+  const auto widenByOneRow = [&](const std::vector<uint8_t>& in, std::vector<uint8_t>& out) {
+    out.resize(cells);
+    for (int y = 0; y < rows; ++y) {
+      const uint8_t* above = &in[static_cast<size_t>(std::max(0, y - 1)) * chunks];
+      const uint8_t* row = &in[static_cast<size_t>(y) * chunks];
+      const uint8_t* below = &in[static_cast<size_t>(std::min(rows - 1, y + 1)) * chunks];
+      uint8_t* o = &out[static_cast<size_t>(y) * chunks];
+      for (int c = 0; c < chunks; ++c) o[c] = above[c] | row[c] | below[c];
+    }
+  };
+  // Runs of consecutive flagged chunks, row by row.
+  const auto collect = [&](const std::vector<uint8_t>& flags, RowSpans& out) {
     out.first.assign(static_cast<size_t>(rows) + 1, 0);
     out.spans.clear();
     for (int y = 0; y < rows; ++y) {
       out.first[y] = static_cast<int>(out.spans.size());
-      std::fill(needed_.begin(), needed_.end(), 0);
-      for (int r = std::max(0, y - reach); r <= std::min(rows - 1, y + reach); ++r)
-        for (int c = 0; c < chunks; ++c)
-          needed_[c] |= near_allowed_[static_cast<size_t>(r) * chunks + c];
+      const uint8_t* flag = &flags[static_cast<size_t>(y) * chunks];
       for (int c = 0; c < chunks;) {
-        if (!needed_[c]) {
+        if (!flag[c]) {
           ++c;
           continue;
         }
         const int begin = c;
-        while (c < chunks && needed_[c]) ++c;
+        while (c < chunks && flag[c]) ++c;
         out.spans.push_back({begin * kChunk, std::min(cols, c * kChunk)});
       }
     }
@@ -57,8 +72,10 @@ void CornerDetector::findSpans(const cv::Mat& allowed) {
   };
   // A response is read at an allowed pixel and its eight neighbours (the 3x3 local maximum); it
   // sums the products of the rows above and below.
-  collect(1, responses_);
-  collect(2, products_);
+  widenByOneRow(near_allowed_, within_one_row_);
+  collect(within_one_row_, responses_);
+  widenByOneRow(within_one_row_, within_two_rows_);
+  collect(within_two_rows_, products_);
 }
 
 float CornerDetector::computeMinEigenvalues(const cv::Mat& image, const cv::Mat& allowed) {

@@ -53,7 +53,7 @@ class CornerDetector {
   cv::Mat dx_, dy_, min_eigenvalue_;                // CV_32F
   std::array<std::vector<float>, 3> product_rows_;  // gx², gx·gy, gy² of three rows
   std::array<std::vector<double>, 3> column_sums_;  // of product_rows_ over 3 rows, padded by 1
-  std::vector<uint8_t> near_allowed_, needed_;      // per row and chunk; per chunk
+  std::vector<uint8_t> near_allowed_, within_one_row_, within_two_rows_;  // per row and chunk
   RowSpans responses_, products_;
   std::vector<Candidate> candidates_;
   std::vector<float> column_maxima_;            // of one row's 3x1 neighbourhoods
