@@ -33,10 +33,10 @@ class CornerDetector {
     std::vector<int> first;
     std::vector<Span> spans;
     struct Range {
-      const Span *first, *last;
-      const Span* begin() const { return first; }
-      const Span* end() const { return last; }
-      bool empty() const { return first == last; }
+      const Span *from, *to;
+      const Span* begin() const { return from; }
+      const Span* end() const { return to; }
+      bool empty() const { return from == to; }
     };
     Range of(int y) const { return {spans.data() + first[y], spans.data() + first[y + 1]}; }
   };
