@@ -71,7 +71,9 @@ std::optional<cv::Point2f> alignWarpedTemplate(const cv::Mat& birth_image, cv::P
     for (const int i : {-r - 1, r + 1})
       if (const cv::Vec2d p = birthPoint(i, j); !inside(birth_image, p[0], p[1]))
         return std::nullopt;
-  std::vector<double> T(wide * wide);
+  // Scratch reused across calls (no allocation per feature), one set per thread.
+  thread_local std::vector<double> T, Tx, Ty, I;
+  T.resize(static_cast<size_t>(wide) * wide);
   for (int j = -r - 1; j <= r + 1; ++j)
     for (int i = -r - 1; i <= r + 1; ++i) {
       const cv::Vec2d p = birthPoint(i, j);
@@ -80,7 +82,8 @@ std::optional<cv::Point2f> alignWarpedTemplate(const cv::Mat& birth_image, cv::P
   // Residual e(v) = I(x + v) − g T(v) − b; unknowns (x, y, g, b). Inverse-compositional style: the
   // Jacobian J = (∇T, −T, −1) is the template's, so the normal matrix Σ J Jᵀ is built once.
   const size_t n = static_cast<size_t>(side) * side;
-  std::vector<double> Tx(n), Ty(n);
+  Tx.resize(n);
+  Ty.resize(n);
   double xx = 0, xy = 0, xt = 0, x1 = 0, yy = 0, yt = 0, y1 = 0, tt = 0, t1 = 0;
   for (int j = 0; j < side; ++j)
     for (int i = 0; i < side; ++i) {
@@ -99,7 +102,6 @@ std::optional<cv::Point2f> alignWarpedTemplate(const cv::Mat& birth_image, cv::P
   cv::Matx44d H_inv;
   if (cv::invert(H, H_inv, cv::DECOMP_CHOLESKY) == 0) return std::nullopt;
   double x = initial.x, y = initial.y, gain = 1, offset = 0;
-  std::vector<double> I;
   for (int iteration = 0; iteration < o.max_iterations; ++iteration) {
     if (!inside(image, x - r, y - r) || !inside(image, x + r, y + r)) return std::nullopt;
     samplePatch(image, x - r, y - r, side, I);
