@@ -6,6 +6,8 @@
 #include <cstring>
 #include <opencv2/imgproc.hpp>
 
+#include "mrpt_modules/frontend/simd_clones.h"
+
 namespace rpvio {
 
 namespace {
@@ -78,7 +80,8 @@ void CornerDetector::findSpans(const cv::Mat& allowed) {
   collect(within_two_rows_, products_);
 }
 
-float CornerDetector::computeMinEigenvalues(const cv::Mat& image, const cv::Mat& allowed) {
+RPVIO_AVX2_CLONES float CornerDetector::computeMinEigenvalues(const cv::Mat& image,
+                                                              const cv::Mat& allowed) {
   // cv::cornerMinEigenVal(image, ·, 3, 3) in one pass over kept buffers, where responses are
   // read (findSpans): Sobel gradients scaled by 1 / (2^(aperture-1) · block · 255), their float
   // products gx², gx·gy, gy² summed over the 3x3 block (border reflected), and the smaller
@@ -158,7 +161,7 @@ float CornerDetector::computeMinEigenvalues(const cv::Mat& image, const cv::Mat&
   return *std::max_element(lane_maxima.begin(), lane_maxima.end());
 }
 
-void CornerDetector::collectLocalMaxima(const cv::Mat& allowed, float threshold) {
+RPVIO_AVX2_CLONES void CornerDetector::collectLocalMaxima(const cv::Mat& allowed, float threshold) {
   // goodFeaturesToTrack zeroes responses <= threshold, then keeps allowed non-zero pixels equal to
   // their 3x3 dilation (image border rows and columns excluded): with a positive threshold (see
   // detect), a response above it that no neighbour exceeds (a zeroed neighbour never does).
