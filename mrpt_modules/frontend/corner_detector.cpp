@@ -32,7 +32,8 @@ void CornerDetector::findSpans(const cv::Mat& allowed) {
       const int begin = c * kChunk, end = std::min(cols, begin + kChunk);
       uint8_t any = (begin > 0 ? ok[begin - 1] : 0) | (end < cols ? ok[end] : 0);
       if (end - begin == kChunk) {
-        uint64_t first, second;  // the chunk's 16 bytes, two words at a time
+        static_assert(kChunk == 2 * sizeof(uint64_t), "a full chunk is read as two words");
+        uint64_t first, second;
         std::memcpy(&first, ok + begin, sizeof first);
         std::memcpy(&second, ok + begin + 8, sizeof second);
         any |= static_cast<uint8_t>((first | second) != 0);
