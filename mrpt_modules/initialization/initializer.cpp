@@ -181,10 +181,15 @@ InitializationResult Initializer::attempt(const Frames& all_frames,
                      "at most " + std::to_string(most_features) + " common to two frames");
     return failure(InitStatus::kTooLittleParallax, format(most_parallax) + " px");
   }
-  // The pair with the most features whose two-view geometry agrees with the gyroscope (a few
-  // tried).
+  // The best-conditioned pairs first: the two-view geometry's precision grows with the parallax
+  // and with the square root of the number of correspondences. (Ordering by features alone picks
+  // the pair with the least baseline above min_parallax_px.) A few are tried until one agrees
+  // with the gyroscope.
+  auto conditioning = [](const Pair& p) {
+    return p.parallax * std::sqrt(static_cast<double>(p.u_i.size()));
+  };
   std::sort(pairs.begin(), pairs.end(),
-            [](const Pair& a, const Pair& b) { return a.u_i.size() > b.u_i.size(); });
+            [&](const Pair& a, const Pair& b) { return conditioning(a) > conditioning(b); });
   const size_t kMaxAttempts = 5;
   std::string why, geometry_failure;
   SfmWindow window = SfmWindow::fromFrames(frames);

@@ -2,13 +2,14 @@
 // The initializer facade (DESIGN.md §1 step 3): from a window of tracked frames and the IMU
 // preintegrations between them, the metric, gravity-aligned initial state of every frame.
 //
-//  kPlanarHomography (rpvio-single / rpvio-multi): the frame pair (l, last) with the largest
-//    plane's features, its homography decomposed and disambiguated by the gyroscope, plane
-//    features placed on the plane, other features triangulated, PnP for the other frames, bundle
-//    adjustment with reprojection + homography residuals; the other planes' distances from their
-//    own decompositions once the motion is metric.
-//  kEssentialMatrix (vins-mono / mask-vins): the pair from the 5-point essential matrix, the same
-//    SfM without planes.
+//  kPlanarHomography (rpvio-single / rpvio-multi): the frame pair (l, r) best conditioned
+//    (parallax × √features of their largest common plane), its homography decomposed and
+//    disambiguated by the gyroscope, plane features placed on the plane, other features
+//    triangulated, PnP for the other frames, bundle adjustment with reprojection + homography
+//    residuals; the other planes' distances from their own decompositions once the motion is
+//    metric.
+//  kEssentialMatrix (vins-mono / mask-vins): the best-conditioned pair (parallax × √features),
+//    its 5-point essential matrix, the same SfM without planes.
 // Then both: visual-inertial alignment (gyro bias, velocities, gravity, scale, accelerometer bias
 // held near zero by a prior) and the gravity-aligned world.
 //
