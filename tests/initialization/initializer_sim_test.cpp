@@ -119,7 +119,9 @@ TEST(InitializerOnSimulator, EssentialStaticSceneAndReportOnCharacters) {
 }
 
 // The initial pair must not hinge on which borderline tracks the front-end keeps: with any fifth
-// of the tracks removed, the VINS-style initializer still initializes on the static scene.
+// of the tracks removed, the VINS-style initializer still initializes on the static scene, its
+// scale within three of the standard deviations it accepts (the first 2 s determine the scale to
+// 2.5-3.2%, so a fixed 5% bound would be only 1.7 sigma).
 TEST(InitializerOnSimulator, EssentialStaticSceneWithAFifthOfTheTracksRemoved) {
   Recording recording = record(0);
   for (int fifth = 0; fifth < 5; ++fifth) {
@@ -128,7 +130,7 @@ TEST(InitializerOnSimulator, EssentialStaticSceneWithAFifthOfTheTracksRemoved) {
     ASSERT_TRUE(o.initialized) << "tracks with id % 5 == " << fifth << " removed: " << o.reason;
     std::printf("vins C0 without id %% 5 == %d: t=%.2f s scale error %.2f%%\n", fifth, o.t,
                 100 * o.scale_error);
-    EXPECT_LT(o.scale_error, 0.05);
+    EXPECT_LT(o.scale_error, 3 * InitializerOptions{}.max_relative_scale_sigma);
   }
 }
 
