@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
 #include <optional>
 #include <unordered_map>
 
+#include "mrpt_modules/frontend/homography_ransac.h"
 #include "mrpt_modules/frontend/point_undistortion.h"
 #include "mrpt_modules/frontend/warped_template_alignment.h"
 #include "rawlog_io/input_error.h"
@@ -22,16 +22,13 @@ const size_t kMinAffineFeatures = 4;
 /// homography, or an affine map on a small plane; nothing from fewer than kMinAffineFeatures.
 std::optional<cv::Matx33d> planeImageMotion(const std::vector<cv::Point2f>& from,
                                             const std::vector<cv::Point2f>& to) {
-  if (from.size() >= kMinHomographyFeatures) {
-    const cv::Mat H = cv::findHomography(from, to, 0);
-    if (!H.empty()) return cv::Matx33d(H);
-  } else if (from.size() >= kMinAffineFeatures) {
-    const cv::Mat A = cv::estimateAffine2D(from, to, cv::noArray(), cv::LMEDS);
-    if (!A.empty())
-      return cv::Matx33d(A.at<double>(0, 0), A.at<double>(0, 1), A.at<double>(0, 2),
-                         A.at<double>(1, 0), A.at<double>(1, 1), A.at<double>(1, 2), 0, 0, 1);
-  }
-  return std::nullopt;
+  if (from.size() < kMinAffineFeatures) return std::nullopt;
+  PointList a, b;
+  for (const auto& p : from) a.emplace_back(p.x, p.y);
+  for (const auto& p : to) b.emplace_back(p.x, p.y);
+  const auto H = from.size() >= kMinHomographyFeatures ? fitHomography(a, b) : fitAffine(a, b);
+  if (!H) return std::nullopt;
+  return cv::Matx33d(H->data()).t();  // Eigen stores by column, Matx by row
 }
 }  // namespace
 

@@ -2,6 +2,8 @@
 
 #include <opencv2/calib3d.hpp>
 
+#include "mrpt_modules/frontend/homography_ransac.h"
+
 namespace rpvio {
 namespace {
 
@@ -25,13 +27,25 @@ std::vector<bool> homographyInliers(const std::vector<cv::Point2f>& from,
                                     const std::vector<cv::Point2f>& to, const RansacOptions& opt,
                                     cv::Mat* H) {
   if (from.size() < 4) return std::vector<bool>(from.size(), true);
-  std::vector<uchar> status;
-  const cv::Mat h = cv::findHomography(toVirtualCamera(from, opt.virtual_focal),
-                                       toVirtualCamera(to, opt.virtual_focal), cv::RANSAC,
-                                       opt.threshold_px, status, 2000, opt.confidence);
-  if (H) *H = h;
-  if (h.empty()) return std::vector<bool>(from.size(), false);
-  return toFlags(status, from.size());
+  PointList a, b;
+  for (const auto& p : from) a.push_back(opt.virtual_focal * Eigen::Vector2d(p.x, p.y));
+  for (const auto& p : to) b.push_back(opt.virtual_focal * Eigen::Vector2d(p.x, p.y));
+  HomographyRansacOptions ransac;
+  ransac.threshold = opt.threshold_px;
+  ransac.confidence = opt.confidence;
+  std::vector<bool> inliers = homographyRansacInliers(a, b, ransac);
+  if (inliers.empty()) return std::vector<bool>(from.size(), false);
+  if (H) {
+    PointList inlier_a, inlier_b;
+    for (size_t i = 0; i < inliers.size(); ++i)
+      if (inliers[i]) {
+        inlier_a.push_back(a[i]);
+        inlier_b.push_back(b[i]);
+      }
+    const auto fit = fitHomography(inlier_a, inlier_b);
+    *H = fit ? cv::Mat(cv::Matx33d(fit->data()).t()) : cv::Mat();
+  }
+  return inliers;
 }
 
 std::vector<bool> fundamentalInliers(const std::vector<cv::Point2f>& from,

@@ -15,7 +15,8 @@ struct RansacOptions {
 };
 
 /// Inlier flags of the homography RANSAC between matched normalized points (≥ 4 matches; with
-/// fewer, every point is kept). Returns the homography (virtual-camera pixels) in `H` if given.
+/// fewer, every point is kept). Returns in `H`, if given, the least-squares homography of the
+/// inliers (virtual-camera pixels).
 std::vector<bool> homographyInliers(const std::vector<cv::Point2f>& from,
                                     const std::vector<cv::Point2f>& to,
                                     const RansacOptions& options, cv::Mat* H = nullptr);
