@@ -177,9 +177,9 @@ std::vector<bool> homographyRansacInliers(const PointList& from, const PointList
     best.swap(flags);
     needed = requiredIterations(options.confidence, static_cast<double>(count) / n);
   }
-  // Local optimization (Chum et al. 2003): a minimal model carries its four points' noise, so the
-  // least-squares fit of its inliers is re-classified while that finds more of them.
-  for (int round = 0; round < kMaxRefits && best_count >= 4; ++round) {
+  // Local optimization (Chum et al. 2003), on request: a minimal model carries its four points'
+  // noise, so the least-squares fit of its inliers is re-classified while that finds more of them.
+  for (int round = 0; options.refine && round < kMaxRefits && best_count >= 4; ++round) {
     PointList inlier_a, inlier_b;
     for (size_t i = 0; i < n; ++i)
       if (best[i]) {

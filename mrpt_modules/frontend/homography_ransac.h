@@ -1,8 +1,8 @@
 #pragma once
 // Homographies between matched points of a plane (Hartley & Zisserman, 2nd ed., ch. 4): the
 // normalized DLT least-squares fit (Alg. 4.2) and a RANSAC over 4-point hypotheses (Alg. 4.6)
-// whose best hypothesis is refined by refitting its inliers (LO-RANSAC). Both work in any units;
-// the RANSAC threshold is in the units of `to`.
+// whose best hypothesis can be refined by refitting its inliers (LO-RANSAC). Both work in any
+// units; the RANSAC threshold is in the units of `to`.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <optional>
@@ -24,11 +24,14 @@ struct HomographyRansacOptions {
   double threshold = 1.0;    // forward transfer error |H from − to| of an inlier, units of `to`
   double confidence = 0.99;  // that one hypothesis drawn had only inliers
   int max_iterations = 2000;
+  // Grow the best hypothesis's inliers by least-squares refits while they find more (LO-RANSAC):
+  // an accurate homography, and more inliers near the threshold than a minimal model accepts.
+  bool refine = false;
 };
 
-/// Inlier flags of the best 4-point hypothesis (most inliers), grown by least-squares refits of
-/// its inliers while they find more. Draws from a fixed seed: the same input gives the same flags.
-/// Empty when no non-degenerate sample exists (fewer than 4 matches, or all on a line).
+/// Inlier flags of the best 4-point hypothesis (most inliers), grown by `refine`. Draws from a
+/// fixed seed: the same input gives the same flags. Empty when no non-degenerate sample exists
+/// (fewer than 4 matches, or all on a line).
 std::vector<bool> homographyRansacInliers(const PointList& from, const PointList& to,
                                           const HomographyRansacOptions& options);
 

@@ -33,6 +33,7 @@ std::vector<bool> homographyInliers(const std::vector<cv::Point2f>& from,
   HomographyRansacOptions ransac;
   ransac.threshold = opt.threshold_px;
   ransac.confidence = opt.confidence;
+  ransac.refine = opt.refine_homography;
   std::vector<bool> inliers = homographyRansacInliers(a, b, ransac);
   if (inliers.empty()) return std::vector<bool>(from.size(), false);
   if (H) {

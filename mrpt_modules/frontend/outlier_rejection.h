@@ -12,6 +12,10 @@ struct RansacOptions {
   double threshold_px = 1.0;
   double virtual_focal = 460.0;
   double confidence = 0.99;
+  // Homography: refit the best hypothesis's inliers (LO-RANSAC) for an accurate H. Off in the
+  // tracker: the refit also keeps tracks up to the threshold from the refined plane motion, and
+  // that measured worse on the simulator suite than the minimal model's stricter inliers.
+  bool refine_homography = false;
 };
 
 /// Inlier flags of the homography RANSAC between matched normalized points (≥ 4 matches; with

@@ -42,6 +42,9 @@ TEST(HomographyRansac, RecoversGrafGroundTruth) {
   RansacOptions options;
   options.threshold_px = 2.0;
   options.virtual_focal = f;  // virtual camera = the arbitrary one: pixels of the images again
+  // An accurate H from half outliers: the inliers of a minimal model (312 here) give 2.2 px,
+  // refitted ones 1.1 px.
+  options.refine_homography = true;
   cv::Mat H_virtual;
   const auto inliers = homographyInliers(from, to, options, &H_virtual);
   ASSERT_FALSE(H_virtual.empty());
