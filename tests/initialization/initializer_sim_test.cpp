@@ -25,16 +25,16 @@ const size_t kWindowFrames = 41;
 
 /// The first 5 s of a simulated sequence through the front-end, and the simulator behind it.
 struct Recording {
-  sim::SimConfig config;
   std::unique_ptr<test::SimWindowSource> source;
   std::vector<test::WindowFrame> frames;
 };
 
 Recording record(int characters) {
+  sim::SimConfig config;
+  config.duration = 5.0;
+  config.scene.characters = characters;
   Recording r;
-  r.config.duration = 5.0;
-  r.config.scene.characters = characters;
-  r.source = std::make_unique<test::SimWindowSource>(r.config);
+  r.source = std::make_unique<test::SimWindowSource>(config);
   while (!r.source->done()) r.frames.push_back(r.source->next());
   return r;
 }
@@ -44,10 +44,11 @@ Recording record(int characters) {
 Outcome initializeOn(
     Recording& recording, InitializerMethod method,
     const std::function<bool(int)>& dropped = [](int) { return false; }) {
+  sim::Simulator& sim = recording.source->simulator();
+  const sim::SimConfig& config = sim.config();
   InitializerOptions options;
   options.method = method;
-  options.min_window_s = (kWindowFrames - 1) / recording.config.camera_rate;
-  sim::Simulator& sim = recording.source->simulator();
+  options.min_window_s = (kWindowFrames - 1) / config.camera_rate;
   Initializer initializer(sim.calibration(), options);
   initializer.setMinLoggingLevel(mrpt::system::LVL_WARN);
   std::vector<FeatureFrame> frames;
@@ -73,8 +74,7 @@ Outcome initializeOn(
     const Eigen::Vector3d up_est = r.T_w_b.back().linear().transpose() * Eigen::Vector3d::UnitZ();
     const Eigen::Vector3d up_true = sim.state(t1).R_wb.transpose() * Eigen::Vector3d::UnitZ();
     out.gravity_error_deg = std::acos(std::min(1.0, up_est.dot(up_true))) * 180 / M_PI;
-    out.bias_error = (r.bg - recording.config.initial_bias.gyro).norm() /
-                     recording.config.initial_bias.gyro.norm();
+    out.bias_error = (r.bg - config.initial_bias.gyro).norm() / config.initial_bias.gyro.norm();
     return out;
   }
   return out;
