@@ -1,8 +1,10 @@
 #include "mrpt_modules/frontend/feature_tracker.h"
 
+#include <Eigen/Core>  // before OpenCV's Eigen header, which needs it
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <opencv2/core/eigen.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
 #include <optional>
@@ -28,7 +30,9 @@ std::optional<cv::Matx33d> planeImageMotion(const std::vector<cv::Point2f>& from
   for (const auto& p : to) b.emplace_back(p.x, p.y);
   const auto H = from.size() >= kMinHomographyFeatures ? fitHomography(a, b) : fitAffine(a, b);
   if (!H) return std::nullopt;
-  return cv::Matx33d(H->data()).t();  // Eigen stores by column, Matx by row
+  cv::Matx33d motion;
+  cv::eigen2cv(*H, motion);
+  return motion;
 }
 }  // namespace
 

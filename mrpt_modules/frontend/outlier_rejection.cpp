@@ -1,6 +1,8 @@
 #include "mrpt_modules/frontend/outlier_rejection.h"
 
+#include <Eigen/Core>  // before OpenCV's Eigen header, which needs it
 #include <opencv2/calib3d.hpp>
+#include <opencv2/core/eigen.hpp>
 
 #include "mrpt_modules/frontend/homography_ransac.h"
 
@@ -43,8 +45,8 @@ std::vector<bool> homographyInliers(const std::vector<cv::Point2f>& from,
         inlier_a.push_back(a[i]);
         inlier_b.push_back(b[i]);
       }
-    const auto fit = fitHomography(inlier_a, inlier_b);
-    *H = fit ? cv::Mat(cv::Matx33d(fit->data()).t()) : cv::Mat();
+    H->release();
+    if (const auto fit = fitHomography(inlier_a, inlier_b)) cv::eigen2cv(*fit, *H);
   }
   return inliers;
 }

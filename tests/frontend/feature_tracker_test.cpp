@@ -67,10 +67,13 @@ TEST(FeatureTracker, FollowsAKnownSubpixelTranslation) {
   EXPECT_NEAR(averageParallax(f0, f1), 460 * std::hypot(2.3, -1.7) / 400, 0.1);
 }
 
-/// Features of f0 tracked into f1 at a displacement within 0.1 px of `shift`; the others are counted
-/// as wrong.
-std::pair<int, int> tracksAtShift(const FeatureFrame& f0, const FeatureFrame& f1,
-                                  const Eigen::Vector2d& shift) {
+/// Tracks of a textured plane whose image jumps by `shift` between two frames: how many are
+/// followed to within 0.1 px of the shift, and how many elsewhere.
+std::pair<int, int> tracksOverAJump(const TrackerOptions& options, const Eigen::Vector2d& shift) {
+  const cv::Mat mask(480, 640, CV_8U, cv::Scalar(1));
+  FeatureTracker tracker(camera(), options);
+  const FeatureFrame f0 = tracker.track(0.0, texture(5), mask);
+  const FeatureFrame f1 = tracker.track(0.05, texture(5, shift.x(), shift.y()), mask);
   std::map<int, Eigen::Vector2d> first;
   for (const auto& f : f0.features) first[f.id] = f.pixel;
   int right = 0, wrong = 0;
@@ -82,23 +85,15 @@ std::pair<int, int> tracksAtShift(const FeatureFrame& f0, const FeatureFrame& f1
 TEST(FeatureTracker, DefaultPyramidFollowsATwentyPixelJump) {
   // Three levels (klt_levels = 2) keep 113 of 150 tracks over a 21.5 px jump (48 over 32 px, and
   // none wrong: README, the tracker's range).
-  const cv::Mat mask(480, 640, CV_8U, cv::Scalar(1));
   const Eigen::Vector2d shift(20, 8);
-  FeatureTracker tracker(camera(), TrackerOptions{});
-  const FeatureFrame f0 = tracker.track(0.0, texture(5), mask);
-  const FeatureFrame f1 = tracker.track(0.05, texture(5, shift.x(), shift.y()), mask);
-  const auto [right, wrong] = tracksAtShift(f0, f1, shift);
+  const auto [right, wrong] = tracksOverAJump(TrackerOptions{}, shift);
   EXPECT_GT(right, 100);
   EXPECT_EQ(wrong, 0);
   // Without the pyramid the same jump is lost: the coarse levels are what follows it.
   TrackerOptions flat;
   flat.klt_levels = 0;
-  FeatureTracker flat_tracker(camera(), flat);
-  const FeatureFrame g0 = flat_tracker.track(0.0, texture(5), mask);
-  const FeatureFrame g1 = flat_tracker.track(0.05, texture(5, shift.x(), shift.y()), mask);
-  EXPECT_LT(tracksAtShift(g0, g1, shift).first, 60);
+  EXPECT_LT(tracksOverAJump(flat, shift).first, 60);
 }
-
 
 TEST(FeatureTracker, DetectsOnlyInsideErodedPlanes) {
   const cv::Mat img = texture(2);
