@@ -6,7 +6,8 @@
 //     - id: 3                        # stable map id
 //       normal: [nx, ny, nz]         # unit, world frame
 //       d: 4.2                       # n·X = d (m)
-//       covariance: [16 numbers]     # row-major 4x4 of (n, d)
+//       covariance: [16 numbers]     # row-major 4x4 of (n, d): the estimator's windows, fused
+//                                    # (none along n itself: the unit constraint)
 //       polygon: [[x, y, z], ...]    # convex hull of the support, on the plane (m, world)
 //       support_points: 512          # decimated supporting points
 //       observations: 40             # updates fused into it

@@ -63,20 +63,55 @@ bool PlanesMap::compatible(const Plane& plane, const Eigen::Vector3d& n, double 
 
 namespace {
 
-/// Information-weighted mean of two (n, d) estimates (covariances as given, inverted), n
-/// renormalized; the fused covariance.
+/// The tangent of (n, d) at unit n as columns of ambient 4-vectors: tilts along the plane's
+/// in-plane basis (u, v), then d.
+Eigen::Matrix<double, 4, 3> tangentBasis(const Eigen::Vector3d& n) {
+  Plane frame;
+  frame.normal = n;
+  Eigen::Vector3d origin, u, v;
+  frame.planeFrame(origin, u, v);
+  Eigen::Matrix<double, 4, 3> E = Eigen::Matrix<double, 4, 3>::Zero();
+  E.block<3, 1>(0, 0) = u;
+  E.block<3, 1>(0, 1) = v;
+  E(3, 2) = 1;
+  return E;
+}
+
+/// Information-weighted fusion of two (n, d) estimates on the unit sphere × line: Gauss–Newton
+/// in the fused normal's tangent. Each estimate's ambient covariance counts in its own tangent
+/// (Eᵀ C E), so a covariance with nothing along n itself (the unit constraint) is welcome; the
+/// fused covariance is ambient the same way, E Σ Eᵀ.
 void fuseEstimates(Eigen::Vector3d& n, double& d, Eigen::Matrix4d& covariance,
                    const Eigen::Vector3d& n_b, double d_b, const Eigen::Matrix4d& covariance_b) {
-  const Eigen::Matrix4d info_a = covariance.inverse(), info_b = covariance_b.inverse();
-  Eigen::Vector4d a, b;
-  a << n, d;
-  b << n_b, d_b;
-  const Eigen::Matrix4d info = info_a + info_b;
-  const Eigen::Vector4d fused = info.ldlt().solve(info_a * a + info_b * b);
-  const double norm = fused.head<3>().norm();
-  n = fused.head<3>() / norm;
-  d = fused(3) / norm;
-  covariance = info.inverse();
+  struct Estimate {
+    Eigen::Vector3d n;
+    double d;
+    Eigen::Matrix<double, 4, 3> E;
+    Eigen::Matrix3d information;
+  };
+  const auto estimate = [](const Eigen::Vector3d& n, double d, const Eigen::Matrix4d& C) {
+    const Eigen::Matrix<double, 4, 3> E = tangentBasis(n);
+    return Estimate{n, d, E, (E.transpose() * C * E).inverse()};
+  };
+  const Estimate estimates[2] = {estimate(n, d, covariance), estimate(n_b, d_b, covariance_b)};
+  Eigen::Matrix<double, 4, 3> E = estimates[0].E;
+  Eigen::Matrix3d H;
+  for (int iteration = 0; iteration < 5; ++iteration) {
+    H.setZero();
+    Eigen::Vector3d g = Eigen::Vector3d::Zero();
+    for (const Estimate& e : estimates) {
+      // Residual: the fused normal's tilt in e's tangent, and the offset difference.
+      const Eigen::Vector3d r(e.E.col(0).head<3>().dot(n), e.E.col(1).head<3>().dot(n), d - e.d);
+      const Eigen::Matrix3d J = e.E.transpose() * E;
+      H += J.transpose() * e.information * J;
+      g += J.transpose() * e.information * r;
+    }
+    const Eigen::Vector3d step = -H.ldlt().solve(g);
+    n = (n + E.topRows<3>() * step).normalized();
+    d += step(2);
+    E = tangentBasis(n);
+  }
+  covariance = E * H.inverse() * E.transpose();
 }
 
 }  // namespace

@@ -36,6 +36,11 @@ PlaneMapAccuracy evaluatePlaneMap(const std::vector<Plane>& map, const std::vect
     if (n.dot(true_plane.normal) < 0) n = -n, d = -d;
     a.normal_error_deg = std::acos(std::clamp(n.dot(true_plane.normal), -1.0, 1.0)) * 180 / M_PI;
     a.distance_error_m = std::abs(d - true_plane.distance);
+    a.normal_sigma_deg = std::sqrt(best.covariance.topLeftCorner<3, 3>().trace()) * 180 / M_PI;
+    // ∂d'/∂(n, d) of d' = s d + (R n)·t.
+    Eigen::Vector4d J;
+    J << est_to_gt.R.transpose() * est_to_gt.t, est_to_gt.s;
+    a.distance_sigma_m = std::sqrt(J.dot(best.covariance * J));
     double first = best.first_seen, last = best.last_seen;
     for (const Plane* p : planes)
       first = std::min(first, p->first_seen), last = std::max(last, p->last_seen);

@@ -16,6 +16,10 @@ struct TruePlaneAccuracy {
   double normal_error_deg = 0;  // of its most observed map plane, after alignment
   double distance_error_m = 0;  // |d| difference of that plane, after alignment
   double seen_s = 0;            // last − first seen over its map planes
+  // What that plane's covariance claims for the same two errors (standard deviations; the normal's
+  // over both tilt directions).
+  double normal_sigma_deg = 0;
+  double distance_sigma_m = 0;
 };
 
 struct PlaneMapAccuracy {

@@ -97,13 +97,15 @@ std::string formatPlaneMapReport(const eval::PlaneMapAccuracy& m) {
   std::snprintf(line, sizeof(line),
                 "\nplane map: %zu entries for %zu true planes (duplicates %zu, mixed %zu, "
                 "unmatched %zu); normal error median %.2f max %.2f deg, offset error median "
-                "%.3f max %.3f m\n%6s %8s %11s %11s %8s\n",
+                "%.3f max %.3f m\n%6s %8s %11s %11s %8s %11s %11s\n",
                 m.map_planes, m.planes.size(), m.duplicates, m.mixed, m.unmatched, n.median, n.max,
-                d.median, d.max, "plane", "entries", "normal deg", "offset m", "seen s");
+                d.median, d.max, "plane", "entries", "normal deg", "offset m", "seen s",
+                "sigma deg", "sigma m");
   out << line;
   for (const auto& p : m.planes) {
-    std::snprintf(line, sizeof(line), "%6d %8zu %11.2f %11.3f %8.1f\n", p.true_id, p.map_entries,
-                  p.normal_error_deg, p.distance_error_m, p.seen_s);
+    std::snprintf(line, sizeof(line), "%6d %8zu %11.2f %11.3f %8.1f %11.2f %11.3f\n", p.true_id,
+                  p.map_entries, p.normal_error_deg, p.distance_error_m, p.seen_s,
+                  p.normal_sigma_deg, p.distance_sigma_m);
     out << line;
   }
   return out.str();

@@ -9,6 +9,7 @@
 #include "mrpt_modules/core/parameter_blocks.h"
 #include "mrpt_modules/factors/homography_factor.h"
 #include "mrpt_modules/factors/imu_factor.h"
+#include "mrpt_modules/factors/marginal_covariance.h"
 #include "mrpt_modules/factors/pose_manifold.h"
 #include "mrpt_modules/factors/reprojection_factor.h"
 #include "mrpt_modules/frontend/feature_tracker.h"
@@ -17,8 +18,11 @@
 namespace rpvio {
 namespace {
 
-// Plane parameters handed to the planes map: standard deviation of (n, d) for one supporting
-// point; the map fuses observations by information.
+// Plane parameters handed to the planes map, which fuses visits by information. Their covariance
+// is the window's, relative to its oldest pose; between visits the odometry drifts (the simulator's
+// trajectory errors: 0.1 deg, 3 cm), which no visit is trusted beyond. Until a covariance has been
+// computed: a standard deviation of (n, d) for one supporting point.
+constexpr double kVisitDriftNormalDeg = 0.2, kVisitDriftDistance = 0.03;
 constexpr double kPlaneSigmaPerPoint = 0.05;
 constexpr size_t kMinPlanePoints = 10;
 // Planarity of the triangulated points of a new plane: their rms distance to the fitted plane, as
@@ -221,7 +225,7 @@ void SlidingWindowEstimator::initializePlanes() {
   }
 }
 
-void SlidingWindowEstimator::optimize() {
+void SlidingWindowEstimator::optimize(bool plane_covariances) {
   ceres::Problem::Options problem_options;
   problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
@@ -285,6 +289,37 @@ void SlidingWindowEstimator::optimize() {
   solver.num_threads = 1;
   ceres::Solver::Summary summary;
   ceres::Solve(solver, &problem, &summary);
+  if (plane_covariances) updatePlaneCovariances(problem, planes_with_factors);
+}
+
+void SlidingWindowEstimator::updatePlaneCovariances(ceres::Problem& problem,
+                                                    const std::set<int>& planes) {
+  std::vector<double*> blocks;
+  for (int mask : planes) {
+    blocks.push_back(planes_.at(mask).normal);
+    blocks.push_back(planes_.at(mask).distance);
+  }
+  if (blocks.empty()) return;
+  const auto covariance = marginalCovariance(problem, blocks);
+  if (!covariance) return;  // not evaluable: the planes keep their last covariance
+  const double drift_normal = kVisitDriftNormalDeg * M_PI / 180;
+  int offset = 0;
+  for (int mask : planes) {
+    PlaneEstimate& e = planes_.at(mask);
+    // Tangent (2 normal numbers on the sphere, d) to ambient (n, d).
+    Eigen::Matrix<double, 3, 2, Eigen::RowMajor> plus;
+    ceres::SphereManifold<3>().PlusJacobian(e.normal, plus.data());
+    Eigen::Matrix<double, 4, 3> E = Eigen::Matrix<double, 4, 3>::Zero();
+    E.topLeftCorner<3, 2>() = plus;
+    E(3, 2) = 1;
+    Eigen::Matrix4d C = E * covariance->block<3, 3>(offset, offset) * E.transpose();
+    const Eigen::Vector3d n = Eigen::Vector3d(e.normal).normalized();
+    C.topLeftCorner<3, 3>() +=
+        drift_normal * drift_normal * (Eigen::Matrix3d::Identity() - n * n.transpose());
+    C(3, 3) += kVisitDriftDistance * kVisitDriftDistance;
+    e.covariance = C;
+    offset += 3;
+  }
 }
 
 void SlidingWindowEstimator::rejectDepthOutliers() {
@@ -419,8 +454,9 @@ void SlidingWindowEstimator::flushPlanes() {
       if (track.plane_id == mask && track.triangulated)
         o.points.push_back(features_.worldPoint(track, cameraLookup()));
     if (o.points.size() < kMinPlanePoints) continue;
-    o.covariance = Eigen::Matrix4d::Identity() * kPlaneSigmaPerPoint * kPlaneSigmaPerPoint /
-                   static_cast<double>(o.points.size());
+    o.covariance =
+        estimate.covariance.value_or(Eigen::Matrix4d::Identity() * kPlaneSigmaPerPoint *
+                                     kPlaneSigmaPerPoint / static_cast<double>(o.points.size()));
     o.time = window_.back()->features.t;
     o.visit = estimate.visit;
     planes_map_.update(o);
@@ -692,7 +728,8 @@ std::optional<StateEstimate> SlidingWindowEstimator::addFrame(
   features_.triangulate(cameraLookup(), options_.min_triangulation_angle_deg * M_PI / 180,
                         kMinDepth, kMaxDepth);
   initializePlanes();
-  optimize();
+  // The planes go to the map after the oldest frame's marginalization.
+  optimize(keyframe && window_.size() > options_.window_size + 1);
   rejectDepthOutliers();
   if (report_.features >= options_.min_features) last_seen_features_t_ = frame.t;
   const std::string why = failure(predicted);

@@ -20,9 +20,11 @@
 // reprojection factors; homography factors on no plane (vins-mono, mask-vins), the largest plane
 // (rpvio-single) or every plane (rpvio-multi). Failures (implausible biases, jumps, too long
 // without features) reset the estimator, which re-initializes; each reset is logged with its cause.
+#include <ceres/problem.h>
 #include <deque>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -184,7 +186,10 @@ class SlidingWindowEstimator {
   PlaneEstimate* homographyPlane(const FeatureTrack& track);
   void choosePlanes();
   void initializePlanes();
-  void optimize();
+  /// One solve of the window; with `plane_covariances`, the covariance of every plane with
+  /// factors then (what the planes map weighs a visit by).
+  void optimize(bool plane_covariances = false);
+  void updatePlaneCovariances(ceres::Problem& problem, const std::set<int>& planes);
   void rejectDepthOutliers();
   std::string failure(const double* predicted_pose) const;
   void marginalizeOldest();

@@ -69,6 +69,26 @@ TEST(PlaneMapAccuracy, CountsDuplicatesMergesAndMeasuresTheMostObservedEntry) {
   EXPECT_EQ(a.unmatched, 1u);
 }
 
+TEST(PlaneMapAccuracy, ReportsWhatTheCovarianceClaimsInTheGroundTruthsFrame) {
+  // A wall x = 5: tilts of 2 deg each way, d to 3 cm. An alignment moving it along its normal
+  // leaves the offset's uncertainty as it is; one moving it along the wall adds the tilts' lever
+  // arm (10 m x 2 deg).
+  const std::vector<Plane> truth = {plane(1, {1, 0, 0}, 15, {1})};
+  std::vector<Plane> map = {plane(1, {1, 0, 0}, 5, {1})};
+  const double tilt = 2 * M_PI / 180;
+  map[0].covariance = Eigen::Vector4d(0, tilt * tilt, tilt * tilt, 0.03 * 0.03).asDiagonal();
+  eval::Similarity shift;
+  shift.t = Eigen::Vector3d(10, 0, 0);
+  const auto a = eval::evaluatePlaneMap(map, truth, shift);
+  ASSERT_EQ(a.planes.size(), 1u);
+  EXPECT_NEAR(a.planes[0].distance_error_m, 0, 1e-12);
+  EXPECT_NEAR(a.planes[0].normal_sigma_deg, 2 * std::sqrt(2.0), 1e-9);
+  EXPECT_NEAR(a.planes[0].distance_sigma_m, 0.03, 1e-12);  // t along n: no lever arm
+  shift.t = Eigen::Vector3d(0, 10, 0);                     // along the wall: the y-tilt's lever arm
+  const auto b = eval::evaluatePlaneMap(map, {plane(1, {1, 0, 0}, 5, {1})}, shift);
+  EXPECT_NEAR(b.planes[0].distance_sigma_m, std::hypot(0.03, 10 * tilt), 1e-12);
+}
+
 TEST(PlaneMapAccuracy, EvalAppReadsTheSimulatorsTruePlanes) {
   test::TempDir dir;
   std::string out;

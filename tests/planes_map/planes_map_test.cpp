@@ -178,6 +178,45 @@ TEST(PlanesMap, EstimatesOfOneVisitReplaceEachOtherAndVisitsAreFused) {
   EXPECT_NEAR(map.planes()[0].covariance(3, 3), 1e-4 / 3, 1e-12);
 }
 
+/// A wall x = d tilted by `tilt_deg` about the y axis, with a covariance as the estimator reports
+/// it: tilts of standard deviation sigma_tilt_deg, offset sigma_d, nothing along n itself.
+PlaneObservation tiltedWall(double tilt_deg, double d, double sigma_tilt_deg, double sigma_d,
+                            uint64_t visit) {
+  PlaneObservation o;
+  o.mask_id = 7;
+  o.visit = visit;
+  o.normal =
+      Eigen::AngleAxisd(tilt_deg * M_PI / 180, Eigen::Vector3d::UnitY()) * Eigen::Vector3d::UnitX();
+  o.distance = d;
+  Eigen::Matrix<double, 4, 3> E = Eigen::Matrix<double, 4, 3>::Zero();
+  E.block<3, 1>(0, 0) = o.normal.cross(Eigen::Vector3d::UnitY()).normalized();
+  E.block<3, 1>(0, 1) = Eigen::Vector3d::UnitY();
+  E(3, 2) = 1;
+  const double s = sigma_tilt_deg * M_PI / 180;
+  o.covariance = E * Eigen::Vector3d(s * s, s * s, sigma_d * sigma_d).asDiagonal() * E.transpose();
+  for (int k = 0; k < 10; ++k) o.points.push_back(o.normal * d + Eigen::Vector3d(0, k * 0.3, 0));
+  return o;
+}
+
+TEST(PlanesMap, VisitsAreFusedOnTheSphereByTheirInformation) {
+  // A far wall's short visit (tilt +4 deg, uncertain to 10 deg) and a long one (-1 deg, to 1 deg);
+  // equal offset uncertainty. The covariances have no information along n (the unit constraint).
+  PlanesMap map;
+  map.update(tiltedWall(4.0, 20.00, 10.0, 0.05, 1));
+  map.update(tiltedWall(-1.0, 20.04, 1.0, 0.05, 2));
+  ASSERT_EQ(map.planes().size(), 1u);
+  const Plane& p = map.planes()[0];
+  // Information-weighted tilt: (4/10² − 1/1²) / (1/10² + 1/1²) = −0.95 deg.
+  const double tilt_deg = std::atan2(-p.normal.z(), p.normal.x()) * 180 / M_PI;
+  EXPECT_NEAR(tilt_deg, -0.95, 0.01);
+  EXPECT_NEAR(p.normal.y(), 0, 1e-9);
+  EXPECT_NEAR(p.normal.norm(), 1, 1e-12);
+  // The offsets are averaged, not rescaled by the fused normal's length (20 m x 1% would be 20 cm).
+  EXPECT_NEAR(p.distance, 20.02, 1e-4);
+  EXPECT_NEAR(p.covariance(3, 3), 0.05 * 0.05 / 2, 1e-8);
+  EXPECT_NEAR((p.covariance * (Eigen::Vector4d() << p.normal, 0).finished()).norm(), 0, 1e-12);
+}
+
 TEST(PlanesMap, ParallelPlanesOneMetreApartStaySeparate) {
   PlanesMap map;
   PlaneObservation a;

@@ -1,0 +1,82 @@
+#include "mrpt_modules/factors/marginal_covariance.h"
+
+#include <ceres/crs_matrix.h>
+#include <Eigen/Dense>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <algorithm>
+
+namespace rpvio {
+
+namespace {
+constexpr double kFree = 1e-12;  // information added to every direction, relative to its block's
+}  // namespace
+
+std::optional<Eigen::MatrixXd> marginalCovariance(ceres::Problem& problem,
+                                                  const std::vector<double*>& wanted) {
+  // Column order: the wanted blocks, the other blocks kept dense, then the scalar blocks to
+  // eliminate first.
+  std::vector<double*> all;
+  problem.GetParameterBlocks(&all);
+  std::vector<double*> ordered = wanted, scalars;
+  for (double* block : all) {
+    if (problem.IsParameterBlockConstant(block) ||
+        std::find(wanted.begin(), wanted.end(), block) != wanted.end())
+      continue;
+    (problem.ParameterBlockTangentSize(block) == 1 ? scalars : ordered).push_back(block);
+  }
+  int wanted_size = 0, dense_size = 0;
+  for (double* block : wanted) wanted_size += problem.ParameterBlockTangentSize(block);
+  for (double* block : ordered) dense_size += problem.ParameterBlockTangentSize(block);
+  ordered.insert(ordered.end(), scalars.begin(), scalars.end());
+
+  ceres::Problem::EvaluateOptions evaluate;
+  evaluate.parameter_blocks = ordered;
+  evaluate.apply_loss_function = true;
+  ceres::CRSMatrix crs;
+  if (!problem.Evaluate(evaluate, nullptr, nullptr, nullptr, &crs)) return std::nullopt;
+  // H = JᵀJ, row by row (a row has ~15 non-zeros: far cheaper than a sparse product).
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(crs.num_cols, crs.num_cols);
+  for (int row = 0; row < crs.num_rows; ++row)
+    for (int a = crs.rows[row]; a < crs.rows[row + 1]; ++a) {
+      H(crs.cols[a], crs.cols[a]) += crs.values[a] * crs.values[a];
+      for (int b = a + 1; b < crs.rows[row + 1]; ++b) {
+        const double h = crs.values[a] * crs.values[b];
+        H(crs.cols[a], crs.cols[b]) += h;
+        H(crs.cols[b], crs.cols[a]) += h;
+      }
+    }
+
+  // Schur complement of the scalar blocks, sparse (a depth touches a few poses):
+  // S = H_kk − H_ke H_ee⁻¹ H_ek.
+  const int eliminated = crs.num_cols - dense_size;
+  Eigen::MatrixXd S = H.topLeftCorner(dense_size, dense_size);
+  if (eliminated > 0) {
+    const Eigen::SparseMatrix<double> H_ek =
+        H.bottomLeftCorner(eliminated, dense_size).sparseView();
+    Eigen::SparseMatrix<double> H_ee = H.bottomRightCorner(eliminated, eliminated).sparseView();
+    for (int i = 0; i < eliminated; ++i)
+      H_ee.coeffRef(i, i) += kFree * std::max(H_ee.coeff(i, i), 1.0);
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(H_ee);
+    if (ldlt.info() != Eigen::Success) return std::nullopt;
+    const Eigen::SparseMatrix<double> X = ldlt.solve(H_ek);
+    S -= Eigen::MatrixXd(Eigen::SparseMatrix<double>(H_ek.transpose()) * X);
+  }
+  // Jacobi-scaled (unit diagonal: the blocks' information differs by ten orders of magnitude,
+  // velocities against biases), plus kFree: a direction the information leaves free (a plane that
+  // window cannot see the tilt of) gets an enormous variance instead of failing every block.
+  Eigen::VectorXd scale = S.diagonal();
+  for (Eigen::Index i = 0; i < scale.size(); ++i)
+    scale(i) = 1 / std::sqrt(scale(i) > 0 ? scale(i) : 1);
+  Eigen::MatrixXd scaled = scale.asDiagonal() * S * scale.asDiagonal();
+  scaled.diagonal().array() += kFree;
+  const Eigen::LDLT<Eigen::MatrixXd> factor(scaled);
+  if (factor.info() != Eigen::Success) return std::nullopt;
+  const Eigen::MatrixXd columns =
+      factor.solve(Eigen::MatrixXd::Identity(dense_size, dense_size).leftCols(wanted_size));
+  const Eigen::VectorXd wanted_scale = scale.head(wanted_size);
+  return Eigen::MatrixXd(wanted_scale.asDiagonal() * columns.topRows(wanted_size) *
+                         wanted_scale.asDiagonal());
+}
+
+}  // namespace rpvio

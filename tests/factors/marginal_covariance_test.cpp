@@ -1,0 +1,115 @@
+// marginalCovariance against ceres::Covariance on a small nonlinear problem with what a window
+// has: a block on a manifold (a plane normal), scalar blocks to eliminate (depths), a dense block
+// left out (a camera position) and a robust loss.
+#include <gtest/gtest.h>
+
+#include <ceres/ceres.h>
+#include <ceres/sphere_manifold.h>
+#include <random>
+
+#include "mrpt_modules/factors/marginal_covariance.h"
+
+namespace rpvio {
+namespace {
+
+/// A point at depth λ along the ray u from the camera c lies on the plane n·X = d.
+struct OnPlane {
+  Eigen::Vector3d u;
+  template <typename T>
+  bool operator()(const T* n, const T* d, const T* depth, const T* c, T* r) const {
+    const Eigen::Map<const Eigen::Matrix<T, 3, 1>> normal(n), camera(c);
+    r[0] = normal.dot(camera + depth[0] * u.cast<T>()) - d[0];
+    return true;
+  }
+};
+
+/// A direct measurement of a block: x − z.
+template <int N>
+struct Measured {
+  Eigen::Matrix<double, N, 1> z;
+  double sigma;
+  template <typename T>
+  bool operator()(const T* x, T* r) const {
+    for (int i = 0; i < N; ++i) r[i] = (x[i] - z(i)) / sigma;
+    return true;
+  }
+};
+
+struct Scene {
+  double n[3] = {0.1, 0.2, 0.97};
+  double d[1] = {2.0};
+  double c[3] = {0.05, -0.1, 0.02};
+  std::vector<std::array<double, 1>> depths;
+  ceres::Problem problem;
+  ceres::SphereManifold<3> sphere;
+  ceres::CauchyLoss loss{0.05};
+
+  Scene() : problem(options()) {
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> U(-0.6, 0.6);
+    std::normal_distribution<double> N(0, 0.05);
+    depths.resize(25);
+    for (auto& depth : depths) {
+      const Eigen::Vector3d u = Eigen::Vector3d(U(rng), U(rng), 1).normalized();
+      depth[0] = 2.2 + N(rng);
+      problem.AddResidualBlock(
+          new ceres::AutoDiffCostFunction<OnPlane, 1, 3, 1, 1, 3>(new OnPlane{u}), &loss, n, d,
+          depth.data(), c);
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<Measured<1>, 1, 1>(
+                                   new Measured<1>{Eigen::Matrix<double, 1, 1>(2.2), 0.1}),
+                               nullptr, depth.data());
+    }
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<Measured<3>, 3, 3>(
+                                 new Measured<3>{Eigen::Vector3d::Zero(), 0.02}),
+                             nullptr, c);
+    problem.SetManifold(n, &sphere);
+    ceres::Solver::Options solver;
+    solver.max_num_iterations = 50;
+    ceres::Solver::Summary summary;
+    ceres::Solve(solver, &problem, &summary);
+  }
+  static ceres::Problem::Options options() {
+    ceres::Problem::Options o;
+    o.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    o.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    return o;
+  }
+};
+
+TEST(MarginalCovariance, AgreesWithCeresCovariance) {
+  Scene scene;
+  const auto ours = marginalCovariance(scene.problem, {scene.n, scene.d});
+  ASSERT_TRUE(ours.has_value());
+  ASSERT_EQ(ours->rows(), 3);  // the normal's 2 tangent numbers, then d
+
+  ceres::Covariance::Options options;
+  options.algorithm_type = ceres::DENSE_SVD;
+  ceres::Covariance reference(options);
+  ASSERT_TRUE(reference.Compute({{scene.n, scene.n}, {scene.n, scene.d}, {scene.d, scene.d}},
+                                &scene.problem));
+  Eigen::Matrix<double, 2, 2, Eigen::RowMajor> nn;
+  Eigen::Vector2d nd;
+  double dd;
+  reference.GetCovarianceBlockInTangentSpace(scene.n, scene.n, nn.data());
+  reference.GetCovarianceBlockInTangentSpace(scene.n, scene.d, nd.data());
+  reference.GetCovarianceBlockInTangentSpace(scene.d, scene.d, &dd);
+  Eigen::Matrix3d expected;
+  expected << nn, nd, nd.transpose(), dd;
+  EXPECT_LT((*ours - expected).norm(), 1e-8 * expected.norm()) << *ours << "\n\n" << expected;
+  // Not the trivial answer: the depths and the camera carry uncertainty into the plane.
+  EXPECT_GT(dd, 1e-6);
+}
+
+TEST(MarginalCovariance, AFreeDirectionGetsAnEnormousVarianceAndLeavesTheRest) {
+  Scene scene;
+  const auto observed = marginalCovariance(scene.problem, {scene.n, scene.d});
+  double unobserved[2] = {0, 0};  // free, and no residual constrains it
+  scene.problem.AddParameterBlock(unobserved, 2);
+  const auto with_free = marginalCovariance(scene.problem, {scene.n, scene.d, unobserved});
+  ASSERT_TRUE(observed.has_value() && with_free.has_value());
+  EXPECT_GT((with_free->bottomRightCorner<2, 2>().diagonal().minCoeff()), 1e9);
+  EXPECT_LT(((with_free->topLeftCorner<3, 3>() - *observed).norm()), 1e-9 * observed->norm());
+}
+
+}  // namespace
+}  // namespace rpvio
