@@ -25,7 +25,7 @@ const char* kUsage =
     "se3.\n"
     "  --planes: the plane map of the first estimate, matched to the true planes by mask label\n"
     "  and moved by that estimate's alignment: map entries per true plane, normal and offset\n"
-    "  errors.\n";
+    "  errors, and the standard deviations the map's covariance gives them.\n";
 
 Trajectory readWithFormat(const std::string& path, const std::string& format) {
   if (format.empty()) return readTrajectory(path);
@@ -79,7 +79,8 @@ void writeJson(const EvalAppOptions& opt, const EvalAppResult& res) {
             << ", \"map_entries\": " << p.map_entries
             << ", \"normal_error_deg\": " << p.normal_error_deg
             << ", \"distance_error_m\": " << p.distance_error_m << ", \"seen_s\": " << p.seen_s
-            << "}";
+            << ", \"normal_sigma_deg\": " << p.normal_sigma_deg
+            << ", \"distance_sigma_m\": " << p.distance_sigma_m << "}";
       }
       out << "]}";
     }

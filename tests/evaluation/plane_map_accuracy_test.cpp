@@ -122,6 +122,7 @@ TEST(PlaneMapAccuracy, EvalAppReadsTheSimulatorsTruePlanes) {
       << out;
   const std::string json = test::readFile(dir.file("r.json"));
   EXPECT_EQ(test::jsonNumber(json, "duplicates"), 1) << json;
+  EXPECT_EQ(test::jsonNumber(json, "normal_sigma_deg"), 0) << json;  // the truth's: certain
   EXPECT_EQ(test::runCommand(test::binDir() + "/rpvio-eval --gt " + gt + " --est " + gt +
                                  " --planes " + dir.file("map.yaml"),
                              out),
