@@ -84,14 +84,13 @@ Eigen::Matrix<double, 4, 3> tangentBasis(const Eigen::Vector3d& n) {
 void fuseEstimates(Eigen::Vector3d& n, double& d, Eigen::Matrix4d& covariance,
                    const Eigen::Vector3d& n_b, double d_b, const Eigen::Matrix4d& covariance_b) {
   struct Estimate {
-    Eigen::Vector3d n;
     double d;
-    Eigen::Matrix<double, 4, 3> E;
+    Eigen::Matrix<double, 4, 3> E;  // its tangent, where its covariance counts
     Eigen::Matrix3d information;
   };
   const auto estimate = [](const Eigen::Vector3d& n, double d, const Eigen::Matrix4d& C) {
     const Eigen::Matrix<double, 4, 3> E = tangentBasis(n);
-    return Estimate{n, d, E, (E.transpose() * C * E).inverse()};
+    return Estimate{d, E, (E.transpose() * C * E).inverse()};
   };
   const Estimate estimates[2] = {estimate(n, d, covariance), estimate(n_b, d_b, covariance_b)};
   Eigen::Matrix<double, 4, 3> E = estimates[0].E;

@@ -91,24 +91,11 @@ sim::SimConfig loadConfig(const CommandLine& cli) {
   return config;
 }
 
-/// The scene's static planes as a plane map (id and mask label = the plane's mask label, polygon
-/// = its rectangle), for evaluating estimated plane maps.
+/// groundtruth_planes.yaml of a sequence.
 void writeTruePlanes(const sim::SimConfig& config, const std::string& dir) {
-  std::vector<Plane> planes;
   const sim::Simulator simulator(config);
-  for (const sim::ScenePlane& s : simulator.scene().planes()) {
-    Plane p;
-    p.id = s.id;
-    p.normal = s.normal;
-    p.distance = s.distance();
-    p.covariance.setZero();
-    const Eigen::Vector3d u = s.width * s.u_axis, v = s.height * s.v_axis;
-    p.polygon = {s.origin, s.origin + u, s.origin + u + v, s.origin + v};
-    p.mask_ids = {s.id};
-    p.last_seen = config.duration;
-    planes.push_back(p);
-  }
-  writePlanesYaml((fs::path(dir) / "groundtruth_planes.yaml").string(), planes);
+  writePlanesYaml((fs::path(dir) / "groundtruth_planes.yaml").string(),
+                  truePlanes(simulator.scene(), config.duration));
 }
 
 void generate(const sim::SimConfig& config, const std::string& dir) {
@@ -133,6 +120,23 @@ void generate(const sim::SimConfig& config, const std::string& dir) {
 }
 
 }  // namespace
+
+std::vector<Plane> truePlanes(const sim::WarehouseScene& scene, double duration) {
+  std::vector<Plane> planes;
+  for (const sim::ScenePlane& s : scene.planes()) {
+    Plane p;
+    p.id = s.id;
+    p.normal = s.normal;
+    p.distance = s.distance();
+    p.covariance.setZero();
+    const Eigen::Vector3d u = s.width * s.u_axis, v = s.height * s.v_axis;
+    p.polygon = {s.origin, s.origin + u, s.origin + u + v, s.origin + v};
+    p.mask_ids = {s.id};
+    p.last_seen = duration;
+    planes.push_back(p);
+  }
+  return planes;
+}
 
 int simMain(int argc, char** argv) {
   return runApp("rpvio-sim", kUsage, [&] {

@@ -1,5 +1,14 @@
 #pragma once
+#include <vector>
+
+#include "planes_map/plane.h"
+#include "rawlog_io/sim/warehouse_scene.h"
+
 namespace rpvio::apps {
 /// rpvio-sim: renders simulated warehouse sequences (see rawlog_io/sim/).
 int simMain(int argc, char** argv);
+
+/// The scene's static planes as a plane map (id and mask label = the plane's mask label, polygon
+/// = its rectangle, certain, seen until `duration`), for evaluating estimated plane maps.
+std::vector<Plane> truePlanes(const sim::WarehouseScene& scene, double duration);
 }  // namespace rpvio::apps

@@ -6,6 +6,7 @@
 
 #include "apps/evaluation/plane_map_accuracy.h"
 #include "apps/evaluation/trajectory_metrics.h"
+#include "apps/lib/sim_app.h"
 #include "mrpt_modules/estimator/sliding_window_estimator.h"
 #include "mrpt_modules/frontend/feature_tracker.h"
 #include "rawlog_io/sim/simulator.h"
@@ -60,16 +61,9 @@ SimulatorRun runOnSimulator(int characters, double duration,
   eval::EvalOptions opt;
   opt.align = eval::AlignMode::SE3;
   run.trajectory = eval::evaluate(truth, estimate, opt);
-  std::vector<Plane> true_planes;
-  for (const auto& p : sim.scene().planes()) {
-    Plane plane;
-    plane.id = p.id;
-    plane.normal = p.normal;
-    plane.distance = p.distance();
-    true_planes.push_back(plane);
-  }
-  run.planes = eval::evaluatePlaneMap(estimator.planesMap().confirmedPlanes(), true_planes,
-                                      run.trajectory.alignment);
+  run.planes =
+      eval::evaluatePlaneMap(estimator.planesMap().confirmedPlanes(),
+                             apps::truePlanes(sim.scene(), duration), run.trajectory.alignment);
   return run;
 }
 
