@@ -5,6 +5,7 @@
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <algorithm>
+#include <set>
 
 namespace rpvio {
 
@@ -15,15 +16,19 @@ constexpr double kFree = 1e-12;  // information added to every direction, relati
 std::optional<Eigen::MatrixXd> marginalCovariance(ceres::Problem& problem,
                                                   const std::vector<double*>& wanted) {
   // Column order: the wanted blocks, the other blocks kept dense, then the scalar blocks to
-  // eliminate first.
-  std::vector<double*> all;
-  problem.GetParameterBlocks(&all);
+  // eliminate first; each group in the order the residuals were added (GetParameterBlocks orders
+  // by address, which would make the sums, hence the run, differ from one run to the next).
+  std::vector<ceres::ResidualBlockId> residuals;
+  problem.GetResidualBlocks(&residuals);
   std::vector<double*> ordered = wanted, scalars;
-  for (double* block : all) {
-    if (problem.IsParameterBlockConstant(block) ||
-        std::find(wanted.begin(), wanted.end(), block) != wanted.end())
-      continue;
-    (problem.ParameterBlockTangentSize(block) == 1 ? scalars : ordered).push_back(block);
+  std::set<double*> seen(wanted.begin(), wanted.end());
+  for (const ceres::ResidualBlockId residual : residuals) {
+    std::vector<double*> blocks;
+    problem.GetParameterBlocksForResidualBlock(residual, &blocks);
+    for (double* block : blocks) {
+      if (problem.IsParameterBlockConstant(block) || !seen.insert(block).second) continue;
+      (problem.ParameterBlockTangentSize(block) == 1 ? scalars : ordered).push_back(block);
+    }
   }
   int wanted_size = 0, dense_size = 0;
   for (double* block : wanted) wanted_size += problem.ParameterBlockTangentSize(block);

@@ -38,30 +38,37 @@ struct Measured {
 struct Scene {
   double n[3] = {0.1, 0.2, 0.97};
   double d[1] = {2.0};
-  double c[3] = {0.05, -0.1, 0.02};
+  std::vector<std::array<double, 3>> cameras;  // one per few depths, each with a prior
   std::vector<std::array<double, 1>> depths;
   ceres::Problem problem;
   ceres::SphereManifold<3> sphere;
   ceres::CauchyLoss loss{0.05};
 
-  Scene() : problem(options()) {
+  /// `reversed_storage`: the same problem, its depths and cameras stored in memory in the reverse
+  /// order of their residuals.
+  explicit Scene(bool reversed_storage = false) : problem(options()) {
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> U(-0.6, 0.6);
     std::normal_distribution<double> N(0, 0.05);
     depths.resize(25);
-    for (auto& depth : depths) {
+    cameras.assign(5, {0.05, -0.1, 0.02});
+    for (size_t k = 0; k < depths.size(); ++k) {
+      auto& depth = depths[reversed_storage ? depths.size() - 1 - k : k];
+      const size_t camera = k % cameras.size();
+      auto& c = cameras[reversed_storage ? cameras.size() - 1 - camera : camera];
       const Eigen::Vector3d u = Eigen::Vector3d(U(rng), U(rng), 1).normalized();
       depth[0] = 2.2 + N(rng);
       problem.AddResidualBlock(
           new ceres::AutoDiffCostFunction<OnPlane, 1, 3, 1, 1, 3>(new OnPlane{u}), &loss, n, d,
-          depth.data(), c);
+          depth.data(), c.data());
       problem.AddResidualBlock(new ceres::AutoDiffCostFunction<Measured<1>, 1, 1>(
                                    new Measured<1>{Eigen::Matrix<double, 1, 1>(2.2), 0.1}),
                                nullptr, depth.data());
     }
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<Measured<3>, 3, 3>(
-                                 new Measured<3>{Eigen::Vector3d::Zero(), 0.02}),
-                             nullptr, c);
+    for (auto& c : cameras)
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<Measured<3>, 3, 3>(
+                                   new Measured<3>{Eigen::Vector3d::Zero(), 0.02}),
+                               nullptr, c.data());
     problem.SetManifold(n, &sphere);
     ceres::Solver::Options solver;
     solver.max_num_iterations = 50;
@@ -98,6 +105,15 @@ TEST(MarginalCovariance, AgreesWithCeresCovariance) {
   EXPECT_LT((*ours - expected).norm(), 1e-8 * expected.norm()) << *ours << "\n\n" << expected;
   // Not the trivial answer: the depths and the camera carry uncertainty into the plane.
   EXPECT_GT(dd, 1e-6);
+}
+
+TEST(MarginalCovariance, DoesNotDependOnWhereTheBlocksLive) {
+  // Runs must repeat exactly: the result may not follow the blocks' addresses.
+  Scene scene, reversed(true);
+  const auto a = marginalCovariance(scene.problem, {scene.n, scene.d});
+  const auto b = marginalCovariance(reversed.problem, {reversed.n, reversed.d});
+  ASSERT_TRUE(a.has_value() && b.has_value());
+  EXPECT_TRUE(a->cwiseEqual(*b).all()) << "differs by " << (*a - *b).norm();
 }
 
 TEST(MarginalCovariance, AFreeDirectionGetsAnEnormousVarianceAndLeavesTheRest) {
