@@ -25,12 +25,14 @@ const std::vector<rpvio::sim::RenderedFrame>& frames() {
   return rendered;
 }
 
-void trackSequence(benchmark::State& state, bool masks, int detection_level = 0) {
+void trackSequence(benchmark::State& state, bool masks, int detection_level = 0,
+                   int min_plane_features = rpvio::TrackerOptions{}.min_plane_features) {
   const auto& images = frames();
   rpvio::sim::SimConfig config;
   rpvio::TrackerOptions options;
   options.use_masks = masks;
   options.detection_level = detection_level;
+  options.min_plane_features = min_plane_features;
   const rpvio::CameraIntrinsics camera = config.calibration().camera;
   size_t features = 0, tracked = 0;
   std::vector<double> frame_seconds;
@@ -62,9 +64,12 @@ void BM_FrontendNoMasks(benchmark::State& state) { trackSequence(state, false); 
 void BM_FrontendPlaneMasksHalfResolutionCorners(benchmark::State& state) {
   trackSequence(state, true, 1);
 }
+// One spacing for every plane (`min_plane_features = 0`, mask-vins' detector).
+void BM_FrontendPlaneMasksOneSpacing(benchmark::State& state) { trackSequence(state, true, 0, 0); }
 BENCHMARK(BM_FrontendPlaneMasks)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_FrontendNoMasks)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_FrontendPlaneMasksHalfResolutionCorners)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_FrontendPlaneMasksOneSpacing)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 

@@ -86,7 +86,7 @@ void SlidingWindowEstimatorModule::initialize(const IniFile& ini, const std::str
 
 void SlidingWindowEstimatorModule::finish() {
   while (!pending_.empty()) processOldestPending();
-  if (estimator_->initialized()) estimator_->flushPlanes();
+  estimator_->finishMap();
 }
 
 void SlidingWindowEstimatorModule::onImu(const ObservationMessage& m) {

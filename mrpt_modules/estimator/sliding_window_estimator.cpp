@@ -463,6 +463,11 @@ void SlidingWindowEstimator::flushPlanes() {
   }
 }
 
+void SlidingWindowEstimator::finishMap() {
+  if (initialized_) flushPlanes();
+  planes_map_.mergeDuplicates();
+}
+
 double SlidingWindowEstimator::significantTimeOffset(const InitializationResult& init) {
   time_offset_estimated_ = true;
   std::vector<double> t;

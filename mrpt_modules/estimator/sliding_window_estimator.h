@@ -144,10 +144,14 @@ class SlidingWindowEstimator {
   double timeOffset() const { return time_offset_; }
   /// What the time-offset estimation found ("" before it ran).
   const std::string& timeOffsetNote() const { return time_offset_note_; }
-  /// Writes the window's current planes into the map (also done as keyframes leave the window).
-  void flushPlanes();
+  /// At the end of a run: the window's current planes into the map (the visits under way end),
+  /// then the map's duplicates merged (a plane whose visit started too far from its entry to be
+  /// associated got a new one; their estimates have converged since).
+  void finishMap();
 
  private:
+  /// Writes the window's current planes into the map (done as keyframes leave the window).
+  void flushPlanes();
   struct Frame {
     uint64_t id = 0;
     FeatureFrame features;

@@ -45,6 +45,8 @@ TrackerOptions TrackerOptions::load(const IniFile& ini, const std::string& s) {
   o.window_margin = static_cast<int>(ini.numberOr(s, "window_margin", o.window_margin));
   o.max_features = static_cast<int>(ini.numberOr(s, "max_features", o.max_features));
   o.min_distance = ini.numberOr(s, "min_distance", o.min_distance);
+  o.min_plane_features =
+      static_cast<int>(ini.numberOr(s, "min_plane_features", o.min_plane_features));
   o.klt_window = static_cast<int>(ini.numberOr(s, "klt_window", o.klt_window));
   o.klt_levels = static_cast<int>(ini.numberOr(s, "klt_levels", o.klt_levels));
   o.max_forward_backward_px = ini.numberOr(s, "max_forward_backward_px", o.max_forward_backward_px);
@@ -234,8 +236,9 @@ void FeatureTracker::computeUniformRegions(const cv::Mat& mask) {
   detectable_ &= trackable_;
 }
 
-std::vector<cv::Point2f> FeatureTracker::detectCorners(const cv::Mat& image, const cv::Mat& allowed,
-                                                       int wanted) {
+std::vector<cv::Point2f> FeatureTracker::detectCorners(CornerDetector& detector,
+                                                       const cv::Mat& image, const cv::Mat& allowed,
+                                                       int wanted, double spacing) const {
   // Shi–Tomasi corners on pyramid level `detection_level`: a corner there is a textured
   // neighbourhood of 3·2^level px, which a KLT window of 21 px tracks as well as a full-resolution
   // one, at a quarter of the cost per level.
@@ -245,14 +248,14 @@ std::vector<cv::Point2f> FeatureTracker::detectCorners(const cv::Mat& image, con
     cv::resize(level_allowed, level_allowed, level_image.size(), 0, 0, cv::INTER_NEAREST);
   }
   const double scale = std::ldexp(1.0, options_.detection_level);
-  std::vector<cv::Point2f> corners = detector_.detect(level_image, level_allowed, wanted, 0.01,
-                                                      std::max(1.0, options_.min_distance / scale));
+  std::vector<cv::Point2f> corners =
+      detector.detect(level_image, level_allowed, wanted, 0.01, std::max(1.0, spacing / scale));
   // Level pixel (x, y) is centred on base pixel (2^level x, 2^level y) (pyrDown's kernel).
   for (cv::Point2f& c : corners) c *= scale;
   return corners;
 }
 
-const cv::Mat& FeatureTracker::detectionMask(const cv::Mat& taken) {
+cv::Mat& FeatureTracker::detectionMask(const cv::Mat& taken) {
   cv::Mat& allowed = allowed_;
   detectable_.copyTo(allowed);
   allowed.setTo(0, taken);
@@ -340,30 +343,58 @@ FeatureFrame FeatureTracker::track(double t, const cv::Mat& raw_image, const cv:
     refineAgainstAnchors(kept, homographies, image);
     undistort(kept);
   }
+  const std::map<int, DensePlane> dense =
+      options_.use_masks ? densePlanes(mask, detectable_, options_.min_plane_features,
+                                       options_.min_distance, options_.klt_window)
+                         : std::map<int, DensePlane>{};
+  const auto spacingOf = [&](int label) {
+    const auto it = dense.find(label);
+    return it == dense.end() ? options_.min_distance : it->second.spacing;
+  };
   // Longest tracks first: they claim their neighbourhood before shorter ones.
   std::stable_sort(kept.begin(), kept.end(),
                    [](const Track& a, const Track& b) { return a.length > b.length; });
   std::vector<Track> spaced;
+  std::map<int, int> tracks_on_plane;
   cv::Mat& taken = taken_;
   taken.create(image.size(), CV_8U);
   taken.setTo(0);
   for (const Track& tr : kept) {
     if (taken.at<uint8_t>(cvRound(tr.pixel.y), cvRound(tr.pixel.x))) continue;
     spaced.push_back(tr);
-    cv::circle(taken, tr.pixel, static_cast<int>(options_.min_distance), cv::Scalar(255),
+    ++tracks_on_plane[tr.plane_id];
+    cv::circle(taken, tr.pixel, static_cast<int>(spacingOf(tr.plane_id)), cv::Scalar(255),
                cv::FILLED);
   }
 
-  const int wanted = options_.max_features - static_cast<int>(spaced.size());
+  int wanted = options_.max_features - static_cast<int>(spaced.size());
   if (wanted > 0) {
-    const cv::Mat& allowed = detectionMask(taken);
+    cv::Mat& allowed = detectionMask(taken);
+    const bool any_allowed = cv::countNonZero(allowed) > 0;
     std::vector<cv::Point2f> corners;
-    if (cv::countNonZero(allowed) > 0) {
-      corners = detectCorners(image, allowed, wanted);
-      if (corners.empty() && spaced.empty()) warnOnce("no corners found in the image");
-    } else if (spaced.empty()) {
-      warnOnce("no static plane visible in the mask: no features (waiting for planes)");
+    // The dense planes first, each up to min_plane_features, on its own box and label; then the
+    // other planes (a dense plane gets no more corners at the wider spacing).
+    for (const auto& [label, plane] : dense) {
+      cv::compare(mask(plane.box), label, on_plane_, cv::CMP_EQ);
+      on_plane_ &= allowed(plane.box);
+      const int on_plane = std::min(wanted, options_.min_plane_features - tracks_on_plane[label]);
+      if (on_plane > 0) {
+        auto found =
+            detectCorners(plane_detector_, image(plane.box), on_plane_, on_plane, plane.spacing);
+        for (cv::Point2f& c : found) c += cv::Point2f(plane.box.tl());
+        corners.insert(corners.end(), found.begin(), found.end());
+        wanted -= static_cast<int>(found.size());
+      }
+      allowed(plane.box).setTo(0, on_plane_);
     }
+    if (wanted > 0 && any_allowed) {
+      auto found = detectCorners(detector_, image, allowed, wanted, options_.min_distance);
+      corners.insert(corners.end(), found.begin(), found.end());
+    }
+    if (!any_allowed && spaced.empty())
+      warnOnce("no static plane visible in the mask: no features (waiting for planes)");
+    else if (corners.empty() && spaced.empty())
+      warnOnce("no corners found in the image");
     const auto normalized = undistortToNormalized(corners, camera_);
     for (size_t i = 0; i < corners.size(); ++i) {
       const int label = options_.use_masks

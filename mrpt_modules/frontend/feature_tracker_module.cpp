@@ -21,8 +21,8 @@ void FeatureTrackerModule::initialize(const IniFile& config, const std::string& 
   if (use_masks_)
     context.bus.subscribeSensor(labels::kPlaneMask, [this](const auto& m) { onMask(m); });
   MRPT_LOG_INFO_STREAM("masks " << (use_masks_ ? "on" : "off") << ", max_features "
-                                << options.max_features << ", min_distance "
-                                << options.min_distance);
+                                << options.max_features << ", min_distance " << options.min_distance
+                                << ", min_plane_features " << options.min_plane_features);
 }
 
 cv::Mat FeatureTrackerModule::timedLoad(const ObservationMessage& m) {

@@ -57,6 +57,7 @@ SimulatorRun runOnSimulator(int characters, double duration,
     e.q = Eigen::Quaterniond(state->pose[6], state->pose[3], state->pose[4], state->pose[5]);
     estimate.push_back(e);
   }
+  estimator.finishMap();  // as rpvio-slam does at the end
   run.resets = estimator.resets();
   eval::EvalOptions opt;
   opt.align = eval::AlignMode::SE3;
