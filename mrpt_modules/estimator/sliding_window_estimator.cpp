@@ -160,9 +160,23 @@ CameraPoseLookup SlidingWindowEstimator::cameraLookup() const {
   return [this](uint64_t id) { return camera(id); };
 }
 
-PlaneEstimate* SlidingWindowEstimator::homographyPlane(const FeatureTrack& track) {
+std::set<int> SlidingWindowEstimator::constrainedPlanes() const {
+  std::map<int, size_t> tracks;
+  for (const auto& [id, track] : features_.tracks())
+    if (inUse(track)) ++tracks[track.plane_id];
+  std::set<int> constrained;
+  for (const auto& [plane, n] : tracks)
+    if (n >= kMinPlanePoints) constrained.insert(plane);
+  return constrained;
+}
+
+PlaneEstimate* SlidingWindowEstimator::homographyPlane(const FeatureTrack& track,
+                                                       const std::set<int>& constrained) {
   const auto plane = planes_.find(track.plane_id);
-  return used_planes_.count(track.plane_id) && plane != planes_.end() ? &plane->second : nullptr;
+  return used_planes_.count(track.plane_id) && constrained.count(track.plane_id) &&
+                 plane != planes_.end()
+             ? &plane->second
+             : nullptr;
 }
 
 bool SlidingWindowEstimator::inUse(const FeatureTrack& track) const {
@@ -251,10 +265,11 @@ void SlidingWindowEstimator::optimize(bool plane_covariances) {
   const uint64_t newest = window_.back()->id;
   report_.features = 0;
   std::set<int> planes_with_factors;
+  const std::set<int> constrained = constrainedPlanes();
   for (auto& [id, track] : features_.tracks()) {
     if (!inUse(track)) continue;
     const TrackObservation& anchor = track.observations.front();
-    PlaneEstimate* plane = homographyPlane(track);
+    PlaneEstimate* plane = homographyPlane(track, constrained);
     for (size_t k = 1; k < track.observations.size(); ++k) {
       const TrackObservation& o = track.observations[k];
       problem.AddResidualBlock(
@@ -379,10 +394,11 @@ void SlidingWindowEstimator::marginalizeOldest() {
   for (auto& f : window_) pose_of[f->id] = f->pose;
   const double weight = options_.virtual_focal / options_.pixel_sigma;
   auto loss = std::make_shared<ceres::CauchyLoss>(options_.cauchy_scale);
+  const std::set<int> constrained = constrainedPlanes();
   for (auto& [id, track] : features_.tracks()) {
     if (!inUse(track) || track.observations.front().frame != oldest.id) continue;
     const TrackObservation& anchor = track.observations.front();
-    PlaneEstimate* plane = homographyPlane(track);
+    PlaneEstimate* plane = homographyPlane(track, constrained);
     for (size_t k = 1; k < track.observations.size(); ++k) {
       const TrackObservation& o = track.observations[k];
       marginalizer.addFactor(std::unique_ptr<ceres::CostFunction>(ReprojectionResidual::create(

@@ -186,8 +186,12 @@ class SlidingWindowEstimator {
   Eigen::Isometry3d camera(uint64_t frame_id) const;
   CameraPoseLookup cameraLookup() const;
   bool inUse(const FeatureTrack& track) const;
-  /// The plane whose homography factors the track's observations get, or nullptr.
-  PlaneEstimate* homographyPlane(const FeatureTrack& track);
+  /// Labels of the planes with kMinPlanePoints tracks in use or more: only they get homography
+  /// factors (fewer leave directions of (n, d) unobserved, which a solve then moves at will).
+  std::set<int> constrainedPlanes() const;
+  /// The plane whose homography factors the track's observations get (one of `constrained`), or
+  /// nullptr.
+  PlaneEstimate* homographyPlane(const FeatureTrack& track, const std::set<int>& constrained);
   void choosePlanes();
   void initializePlanes();
   /// One solve of the window; with `plane_covariances`, the covariance of every plane with
