@@ -17,19 +17,28 @@ std::map<int, DensePlane> densePlanes(const cv::Mat& mask, const cv::Mat& detect
     int area = 0, x0 = 0, y0 = 0, x1 = -1, y1 = -1;
   };
   std::array<Extent, 256> extent{};
+  // Row by row, in runs of one label (detectable pixels only; 0 otherwise): one extent update per
+  // run, and a loop per pixel that only compares.
   for (int y = 0; y < mask.rows; ++y) {
     const uint8_t* label = mask.ptr<uint8_t>(y);
     const uint8_t* ok = detectable.ptr<uint8_t>(y);
-    for (int x = 0; x < mask.cols; ++x) {
-      if (!ok[x]) continue;
-      Extent& e = extent[label[x]];
-      if (e.area++ == 0) {
-        e.x0 = e.x1 = x;
-        e.y0 = e.y1 = y;
+    const auto labelAt = [&](int x) { return ok[x] ? label[x] : uint8_t{0}; };
+    for (int x = 0; x < mask.cols;) {
+      const uint8_t l = labelAt(x);
+      int end = x + 1;
+      while (end < mask.cols && labelAt(end) == l) ++end;
+      if (l != 0) {
+        Extent& e = extent[l];
+        if (e.area == 0) {
+          e.x0 = x;
+          e.y0 = y;
+        }
+        e.area += end - x;
+        e.x0 = std::min(e.x0, x);
+        e.x1 = std::max(e.x1, end - 1);
+        e.y1 = y;
       }
-      e.x0 = std::min(e.x0, x);
-      e.x1 = std::max(e.x1, x);
-      e.y1 = y;
+      x = end;
     }
   }
   for (int label = 1; label < 255; ++label) {
