@@ -211,6 +211,15 @@ std::vector<Plane> PlanesMap::confirmedPlanes() const {
   return confirmed;
 }
 
+void PlanesMap::setParameters(int id, const Eigen::Vector3d& normal, double distance) {
+  for (auto& p : planes_)
+    if (p.id == id) {
+      p.normal = normal;
+      p.distance = distance;
+      p.updatePolygon();
+    }
+}
+
 const Plane* PlanesMap::plane(int id) const {
   for (const auto& p : planes_)
     if (p.id == id) return &p;

@@ -53,6 +53,9 @@ class PlanesMap {
   /// Merges planes that have become the same surface; returns how many were merged away.
   size_t mergeDuplicates();
 
+  /// Replaces a plane's (n, d) (the batch refinement's); its covariance stays the windows'.
+  void setParameters(int id, const Eigen::Vector3d& normal, double distance);
+
   const Plane* plane(int id) const;
   /// The confirmed plane a mask label currently stands for (what the estimator may start a visit
   /// from), or nullptr.

@@ -156,6 +156,9 @@ std::optional<eval::EvalResult> evaluateRun(BenchRun& run, const Trajectory& gt)
     run.ate_rotation_deg = r.ate_rotation_rmse_deg;
     run.coverage = r.coverage;
     run.evaluated = true;
+    const fs::path refined = dir / "trajectory_refined.tum";
+    if (fs::exists(refined))
+      run.refined_ate_rmse = eval::evaluate(gt, readTum(refined.string()), {}).ate.rmse;
     return r;
   } catch (const std::exception& e) {
     run.error = e.what();

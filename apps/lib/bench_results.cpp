@@ -84,6 +84,16 @@ std::string resultsMarkdown(const BenchSetup& setup, const std::vector<BenchRun>
     if (pair.empty()) return "-";
     return number(100 * medianOf(pair, [](const BenchRun& r) { return r.coverage; }), 0);
   });
+  out << "\n## ATE RMSE (m) after the batch refinement, median\n\n"
+      << "The keyframes of `trajectory_refined.tum` (one bundle adjustment over the whole run, at "
+         "its end), same alignment, tracked runs only. -: no refinement.\n\n";
+  table(out, setup, runs, [&](const std::vector<const BenchRun*>& pair) -> std::string {
+    std::vector<const BenchRun*> refined;
+    for (const BenchRun* r : pair)
+      if (tracked(*r, setup) && r->refined_ate_rmse >= 0) refined.push_back(r);
+    if (refined.empty()) return "-";
+    return number(medianOf(refined, [](const BenchRun& r) { return r.refined_ate_rmse; }), 4);
+  });
   out << "\n## Timing per frame (ms), medians over the mode's runs\n\n"
       << "Wall-clock per frame on one core: image decoding (the PNG files of image and mask), "
          "front-end, estimator; processing = front-end + estimator; total = all of it";
@@ -135,6 +145,7 @@ std::string resultsJson(const BenchSetup& setup, const std::vector<BenchRun>& ru
         << ", \"tracked\": " << (tracked(r, setup) ? "true" : "false")
         << ", \"error\": " << jsonString(r.error) << ", \"ate_rmse\": " << r.ate_rmse
         << ", \"ate_rotation_deg\": " << r.ate_rotation_deg << ", \"coverage\": " << r.coverage
+        << ", \"refined_ate_rmse\": " << r.refined_ate_rmse
         << ", \"initialized_at\": " << r.initialized_at << ", \"resets\": " << r.resets
         << ", \"frontend_ms_median\": " << r.frontend_ms_median
         << ", \"frontend_ms_p95\": " << r.frontend_ms_p95

@@ -14,6 +14,7 @@ struct BenchRun {
   bool evaluated = false;
   std::string error;  // why it was not evaluated
   double ate_rmse = 0, ate_rotation_deg = 0, coverage = 0;
+  double refined_ate_rmse = -1;  // of trajectory_refined.tum (its keyframes); -1: none
   // From the run's summary.json.
   double initialized_at = -1, resets = 0;
   double frontend_ms_median = 0, frontend_ms_p95 = 0, optimization_ms_median = 0,

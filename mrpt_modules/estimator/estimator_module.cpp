@@ -66,6 +66,9 @@ void SlidingWindowEstimatorModule::initialize(const IniFile& ini, const std::str
   o.reinit_max_relative_scale_sigma =
       ini.numberOr(s, "reinit_max_scale_sigma", o.reinit_max_relative_scale_sigma);
   o.max_reconnect_s = ini.numberOr(s, "max_reconnect_s", o.max_reconnect_s);
+  o.batch_refinement = ini.flagOr(s, "batch_refinement", o.batch_refinement);
+  o.batch_refinement_max_keyframes = static_cast<size_t>(ini.numberOr(
+      s, "batch_refinement_max_keyframes", static_cast<double>(o.batch_refinement_max_keyframes)));
   o.estimate_time_offset = ini.flagOr(s, "estimate_time_offset", o.estimate_time_offset);
   o.min_time_offset_s = ini.numberOr(s, "min_time_offset_s", o.min_time_offset_s);
   o.max_time_offset_s = ini.numberOr(s, "max_time_offset_s", o.max_time_offset_s);
@@ -87,6 +90,7 @@ void SlidingWindowEstimatorModule::initialize(const IniFile& ini, const std::str
 void SlidingWindowEstimatorModule::finish() {
   while (!pending_.empty()) processOldestPending();
   estimator_->finishMap();
+  if (!estimator_->refinementReport().empty()) MRPT_LOG_INFO_STREAM(estimator_->refinementReport());
 }
 
 void SlidingWindowEstimatorModule::onImu(const ObservationMessage& m) {

@@ -1,11 +1,17 @@
 #pragma once
-// Plane states of the sliding-window estimator.
+// Pose and plane states of the sliding-window estimator.
 #include <Eigen/Core>
 #include <cstdint>
 #include <map>
 #include <optional>
 
 namespace rpvio {
+
+struct StateEstimate {
+  double t = 0;
+  double pose[7] = {0, 0, 0, 0, 0, 0, 1};  // body in world [p, q]
+  bool keyframe = false;
+};
 
 /// A plane n·X = d in the world frame (n on the unit sphere).
 struct PlaneEstimate {

@@ -50,37 +50,44 @@ void FeatureManager::removeFrame(uint64_t frame, const CameraPoseLookup& cameras
   }
 }
 
+double widestRayAngle(const FeatureTrack& track, const CameraPoseLookup& cameras) {
+  const auto world_ray = [&](const TrackObservation& o) {
+    return (cameras(o.frame).linear() * ray(o.normalized)).normalized();
+  };
+  const Eigen::Vector3d r0 = world_ray(track.observations.front());
+  double widest = 0;
+  for (const auto& o : track.observations)
+    widest = std::max(widest, std::acos(std::clamp(r0.dot(world_ray(o)), -1.0, 1.0)));
+  return widest;
+}
+
+std::optional<double> linearAnchorDepth(const FeatureTrack& track,
+                                        const CameraPoseLookup& cameras) {
+  // Linear triangulation in the anchor camera: each view gives u × (R X + t) = 0 (two rows).
+  const Eigen::Isometry3d anchor = cameras(track.observations.front().frame);
+  Eigen::MatrixXd A(2 * track.observations.size(), 4);
+  for (size_t k = 0; k < track.observations.size(); ++k) {
+    const auto& o = track.observations[k];
+    const Eigen::Isometry3d c_from_anchor = cameras(o.frame).inverse() * anchor;
+    Eigen::Matrix<double, 3, 4> P;
+    P << c_from_anchor.linear(), c_from_anchor.translation();
+    A.row(2 * k) = o.normalized.x() * P.row(2) - P.row(0);
+    A.row(2 * k + 1) = o.normalized.y() * P.row(2) - P.row(1);
+  }
+  const Eigen::Vector4d X =
+      Eigen::JacobiSVD<Eigen::MatrixXd>(A, Eigen::ComputeFullV).matrixV().col(3);
+  if (std::abs(X(3)) < 1e-12) return std::nullopt;
+  return X(2) / X(3);
+}
+
 void FeatureManager::triangulate(const CameraPoseLookup& cameras, double min_angle_rad,
                                  double min_depth, double max_depth) {
   for (auto& [id, track] : tracks_) {
     if (track.triangulated || track.observations.size() < 2) continue;
-    // Widest ray angle to the anchor, in the world frame.
-    const Eigen::Isometry3d anchor = cameras(track.observations.front().frame);
-    const Eigen::Vector3d r0 =
-        (anchor.linear() * ray(track.observations.front().normalized)).normalized();
-    double widest = 0;
-    for (const auto& o : track.observations)
-      widest = std::max(
-          widest,
-          std::acos(std::clamp(r0.dot((cameras(o.frame).linear() * ray(o.normalized)).normalized()),
-                               -1.0, 1.0)));
-    if (widest < min_angle_rad) continue;
-    // Linear triangulation in the anchor camera: each view gives u × (R X + t) = 0 (two rows).
-    Eigen::MatrixXd A(2 * track.observations.size(), 4);
-    for (size_t k = 0; k < track.observations.size(); ++k) {
-      const auto& o = track.observations[k];
-      const Eigen::Isometry3d c_from_anchor = cameras(o.frame).inverse() * anchor;
-      Eigen::Matrix<double, 3, 4> P;
-      P << c_from_anchor.linear(), c_from_anchor.translation();
-      A.row(2 * k) = o.normalized.x() * P.row(2) - P.row(0);
-      A.row(2 * k + 1) = o.normalized.y() * P.row(2) - P.row(1);
-    }
-    const Eigen::Vector4d X =
-        Eigen::JacobiSVD<Eigen::MatrixXd>(A, Eigen::ComputeFullV).matrixV().col(3);
-    if (std::abs(X(3)) < 1e-12) continue;
-    const double depth = X(2) / X(3);
-    if (depth < min_depth || depth > max_depth) continue;
-    track.inv_depth[0] = 1.0 / depth;
+    if (widestRayAngle(track, cameras) < min_angle_rad) continue;
+    const std::optional<double> depth = linearAnchorDepth(track, cameras);
+    if (!depth || *depth < min_depth || *depth > max_depth) continue;
+    track.inv_depth[0] = 1.0 / *depth;
     track.triangulated = true;
   }
 }

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <optional>
 #include <vector>
 
 #include "mrpt_modules/core/feature_frame.h"
@@ -28,6 +29,12 @@ struct FeatureTrack {
 
 /// Camera pose in the world of a window frame, by frame id.
 using CameraPoseLookup = std::function<Eigen::Isometry3d(uint64_t frame)>;
+
+/// Widest angle between the anchor's ray and another observation's, in the world frame (rad).
+double widestRayAngle(const FeatureTrack& track, const CameraPoseLookup& cameras);
+/// Depth in the anchor camera of the linear triangulation from all the track's observations;
+/// nothing when degenerate.
+std::optional<double> linearAnchorDepth(const FeatureTrack& track, const CameraPoseLookup& cameras);
 
 class FeatureManager {
  public:

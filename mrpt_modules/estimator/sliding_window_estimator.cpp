@@ -7,6 +7,8 @@
 #include <cmath>
 
 #include "mrpt_modules/core/parameter_blocks.h"
+#include "mrpt_modules/estimator/batch_refinement.h"
+#include "mrpt_modules/estimator/estimator_problem.h"
 #include "mrpt_modules/factors/homography_factor.h"
 #include "mrpt_modules/factors/imu_factor.h"
 #include "mrpt_modules/factors/marginal_covariance.h"
@@ -240,18 +242,10 @@ void SlidingWindowEstimator::initializePlanes() {
 }
 
 void SlidingWindowEstimator::optimize(bool plane_covariances) {
-  ceres::Problem::Options problem_options;
-  problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  ceres::Problem problem(problem_options);
-  PoseManifold pose_manifold;
-  TiltOnlyPoseManifold gauge_manifold;
-  ceres::SphereManifold<3> sphere;
-  ceres::CauchyLoss loss(options_.cauchy_scale);
-  problem.AddParameterBlock(mount_, 7, &pose_manifold);
-  problem.SetParameterBlockConstant(mount_);
+  EstimatorProblem solve_problem(mount_, options_.cauchy_scale);
+  ceres::Problem& problem = solve_problem.problem;
   for (auto& f : window_) {
-    problem.AddParameterBlock(f->pose, 7, &pose_manifold);
+    problem.AddParameterBlock(f->pose, 7, &solve_problem.pose_manifold);
     problem.AddParameterBlock(f->speed_bias, 9);
   }
   const Eigen::Vector3d g(0, 0, -calib_.imu.gravity);
@@ -273,12 +267,13 @@ void SlidingWindowEstimator::optimize(bool plane_covariances) {
     for (size_t k = 1; k < track.observations.size(); ++k) {
       const TrackObservation& o = track.observations[k];
       problem.AddResidualBlock(
-          ReprojectionResidual::create(anchor.normalized, o.normalized, weight), &loss,
-          pose_of[anchor.frame], pose_of[o.frame], mount_, track.inv_depth);
+          ReprojectionResidual::create(anchor.normalized, o.normalized, weight),
+          &solve_problem.loss, pose_of[anchor.frame], pose_of[o.frame], mount_, track.inv_depth);
       if (plane)
         problem.AddResidualBlock(
-            HomographyResidual::create(anchor.normalized, o.normalized, weight), &loss,
-            pose_of[anchor.frame], pose_of[o.frame], mount_, plane->normal, plane->distance);
+            HomographyResidual::create(anchor.normalized, o.normalized, weight),
+            &solve_problem.loss, pose_of[anchor.frame], pose_of[o.frame], mount_, plane->normal,
+            plane->distance);
     }
     if (plane) planes_with_factors.insert(track.plane_id);
     if (track.observations.back().frame == newest) ++report_.features;
@@ -286,12 +281,12 @@ void SlidingWindowEstimator::optimize(bool plane_covariances) {
   report_.planes = planes_with_factors.size();
   if (prior_) problem.AddResidualBlock(new MarginalizationFactor(prior_), nullptr, prior_->blocks);
   for (auto& [mask, e] : planes_)
-    if (problem.HasParameterBlock(e.normal)) problem.SetManifold(e.normal, &sphere);
+    if (problem.HasParameterBlock(e.normal)) problem.SetManifold(e.normal, &solve_problem.sphere);
   // Gauge: the window cannot observe its yaw and position, so the oldest frame keeps them (its
   // whole pose before a prior exists). Left free, each solve moved the window along them by what
   // the prior's linearization lends them (degrees of yaw within a second on the simulator).
   if (prior_)
-    problem.SetManifold(window_.front()->pose, &gauge_manifold);
+    problem.SetManifold(window_.front()->pose, &solve_problem.gauge_manifold);
   else
     problem.SetParameterBlockConstant(window_.front()->pose);
 
@@ -386,7 +381,8 @@ void SlidingWindowEstimator::marginalizeOldest() {
   // An IMU factor over a gap or saturated samples is left out of the prior: its model error,
   // frozen by the linearization, pulled the accelerometer bias away within a second (the
   // simulated 0.2 s gap ended in a reset).
-  if (!imuDefects(next.imu, oldest.features.t, next.features.t).any())
+  const bool imu_linked = !imuDefects(next.imu, oldest.features.t, next.features.t).any();
+  if (imu_linked)
     marginalizer.addFactor(std::make_unique<ImuFactor>(next.imu_from_previous, g), nullptr,
                            {oldest.pose, oldest.speed_bias, next.pose, next.speed_bias});
   std::set<const double*> remove = {oldest.pose, oldest.speed_bias};
@@ -415,6 +411,7 @@ void SlidingWindowEstimator::marginalizeOldest() {
   }
   prior_ = marginalizer.marginalize(remove);
   flushPlanes();
+  archiveKeyframe(oldest, imu_linked ? &next : nullptr);
   features_.removeFrame(oldest.id, cameraLookup());
   window_.pop_front();
   window_.front()->imu_from_previous = nullptr;
@@ -479,9 +476,71 @@ void SlidingWindowEstimator::flushPlanes() {
   }
 }
 
+void SlidingWindowEstimator::archiveKeyframe(const Frame& frame, const Frame* next) {
+  if (!options_.batch_refinement) return;
+  ArchivedKeyframe k;
+  k.id = frame.id;
+  k.t = frame.features.t;
+  std::copy(frame.pose, frame.pose + 7, k.pose);
+  std::copy(frame.speed_bias, frame.speed_bias + 9, k.speed_bias);
+  // The window's factor, noise inflated (with the calibration's noise the refined trajectories
+  // were 1.3-2.3x worse on the simulated static sequences).
+  if (next) k.to_next = next->imu_from_previous;
+  keyframe_archive_.add(k, features_, [this](const FeatureTrack& t) { return inUse(t); });
+}
+
 void SlidingWindowEstimator::finishMap() {
-  if (initialized_) flushPlanes();
+  if (initialized_) {
+    flushPlanes();
+    for (size_t k = 0; k < window_.size(); ++k) {
+      const bool linked =
+          k + 1 < window_.size() &&
+          !imuDefects(window_[k + 1]->imu, window_[k]->features.t, window_[k + 1]->features.t)
+               .any();
+      archiveKeyframe(*window_[k], linked ? window_[k + 1].get() : nullptr);
+    }
+  }
   planes_map_.mergeDuplicates();
+  if (options_.batch_refinement) refineBatch();
+}
+
+void SlidingWindowEstimator::refineBatch() {
+  if (keyframe_archive_.size() < 2) return;  // never initialized
+  if (keyframe_archive_.size() > options_.batch_refinement_max_keyframes) {
+    refinement_report_ = "batch refinement skipped: " + std::to_string(keyframe_archive_.size()) +
+                         " keyframes, more than batch_refinement_max_keyframes (" +
+                         std::to_string(options_.batch_refinement_max_keyframes) + ")";
+    return;
+  }
+  std::map<int, PlaneEstimate> planes;
+  for (const Plane& p : planes_map_.confirmedPlanes()) {
+    PlaneEstimate& r = planes[p.id];
+    std::copy(p.normal.data(), p.normal.data() + 3, r.normal);
+    r.distance[0] = p.distance;
+  }
+  BatchRefinementOptions o;
+  o.weight = options_.virtual_focal / options_.pixel_sigma;
+  o.cauchy_scale = options_.cauchy_scale;
+  o.gravity = calib_.imu.gravity;
+  o.min_parallax_rad = options_.min_triangulation_angle_deg * M_PI / 180;
+  o.min_plane_tracks = kMinPlanePoints;
+  BatchRefinement batch(
+      keyframe_archive_, mount_,
+      [this](int label) {
+        const Plane* p = planes_map_.planeOfMask(label);
+        return p ? p->id : 0;
+      },
+      planes, o);
+  const bool solved = batch.solve();
+  refinement_report_ = batch.report();
+  refinement_seconds_ = batch.seconds();
+  if (!solved) {
+    refinement_report_ += " (not usable: the map and trajectory keep the odometry's)";
+    return;
+  }
+  for (const auto& [id, r] : planes)
+    planes_map_.setParameters(id, Eigen::Vector3d(r.normal).normalized(), r.distance[0]);
+  refined_trajectory_ = keyframe_archive_.trajectory();
 }
 
 double SlidingWindowEstimator::significantTimeOffset(const InitializationResult& init) {
@@ -635,7 +694,8 @@ void SlidingWindowEstimator::tryInitialize() {
     e.visit = ++plane_visits_;
     planes_[mask] = e;
   }
-  if (last_good_) reconnect();
+  // A new world: the archived keyframes are in another one.
+  if (!(last_good_ && reconnect())) keyframe_archive_.clear();
   init_buffer_.clear();
   initialized_ = true;
   last_seen_features_t_ = window_.back()->features.t;
@@ -646,7 +706,7 @@ void SlidingWindowEstimator::tryInitialize() {
   rejectDepthOutliers();
 }
 
-void SlidingWindowEstimator::reconnect() {
+bool SlidingWindowEstimator::reconnect() {
   Frame from, to;
   from.features.t = last_good_->t;
   std::copy(last_good_->pose, last_good_->pose + 7, from.pose);
@@ -659,7 +719,7 @@ void SlidingWindowEstimator::reconnect() {
       preintegrate(samples, last_good_->t, first.features.t, last_good_->speed_bias, &calib_.imu);
   last_good_.reset();
   imu_since_good_.clear();
-  if (!to.imu_from_previous) return;
+  if (!to.imu_from_previous) return false;
   predict(from, to);
   // Both worlds have z up: they differ by a yaw and a translation.
   const Eigen::Matrix3d M = poseRotation(to.pose).toRotationMatrix() *
@@ -680,6 +740,7 @@ void SlidingWindowEstimator::reconnect() {
     std::copy(n.data(), n.data() + 3, e.normal);
     e.distance[0] += n.dot(shift);
   }
+  return true;
 }
 
 void SlidingWindowEstimator::reset(const std::string& cause) {
@@ -688,6 +749,7 @@ void SlidingWindowEstimator::reset(const std::string& cause) {
   status_detail_ = status_;
   report_.state = "reset";
   initialized_ = false;
+  keyframe_archive_.breakChain();  // the window's frames, the link's other end, are dropped
   window_.clear();
   features_.clear();
   prior_.reset();
