@@ -39,15 +39,21 @@ Eigen::Isometry3d getPose(const double* pose) {
 }
 
 /// Keyframes every 0.25 s from 0.5 s; a 12x10 grid of plane points born every second, seen 3 s.
-/// Every keyframe starts from `start_error` ∘ truth (a tilt about the first keyframe), planes
-/// tilted by 1 deg and moved by 5 cm. With `break_after`, the IMU chain breaks after the keyframe
-/// at that time (as at a reset).
-void build(Scenario& s, const Eigen::Isometry3d& start_error, double break_after = -1) {
+/// The keyframes start from the truth tilted by `tilt_deg` about the first keyframe (a causal
+/// estimate whose gravity direction was off, everything else consistent with it), the planes
+/// tilted by 1 deg more and moved by 5 cm. With `break_after`, the IMU chain breaks after the
+/// keyframe at that time (as at a reset).
+void build(Scenario& s, double tilt_deg, double break_after = -1) {
   sim::SimConfig config;
   config.duration = kDuration;
   config.imu_noise = false;
   sim::Simulator sim(config);
   const auto imu = sim.imuStream();
+  const Eigen::Vector3d center = sim.bodyPose(0.5).translation();
+  Eigen::Isometry3d start_error = Eigen::Isometry3d::Identity();
+  start_error.linear() =
+      Eigen::AngleAxisd(tilt_deg * M_PI / 180, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  start_error.translation() = center - start_error.linear() * center;
   const Calibration calib = sim.calibration();
   setPose(calib.T_BC, s.mount);
   FeatureManager features;
@@ -163,16 +169,7 @@ void expectTruth(const Errors& e) {
 
 TEST(BatchRefinement, BringsATiltedStartBackToTheTruth) {
   Scenario s;
-  // The causal estimate's world is tilted by 0.5 deg about the first keyframe (its gravity
-  // direction was off), everything else consistent with it.
-  const Eigen::Vector3d origin = [] {
-    sim::SimConfig c;
-    return sim::Simulator(c).bodyPose(0.5).translation();
-  }();
-  Eigen::Isometry3d tilt = Eigen::Isometry3d::Identity();
-  tilt.linear() = Eigen::AngleAxisd(0.5 * M_PI / 180, Eigen::Vector3d::UnitX()).toRotationMatrix();
-  tilt.translation() = origin - tilt.linear() * origin;
-  build(s, tilt);
+  build(s, 0.5);
   expectTruth(solveAndCompare(s, 1));
 }
 
@@ -180,7 +177,7 @@ TEST(BatchRefinement, BringsATiltedStartBackToTheTruth) {
 // they stay where they are, the planes (shared) come back.
 TEST(BatchRefinement, TwoSegmentsAfterABrokenChain) {
   Scenario s;
-  build(s, Eigen::Isometry3d::Identity(), 4.0);
+  build(s, 0.0, 4.0);
   expectTruth(solveAndCompare(s, 2));
 }
 
