@@ -483,8 +483,8 @@ void SlidingWindowEstimator::archiveKeyframe(const Frame& frame, const Frame* ne
   k.t = frame.features.t;
   std::copy(frame.pose, frame.pose + 7, k.pose);
   std::copy(frame.speed_bias, frame.speed_bias + 9, k.speed_bias);
-  // The window's factor, noise inflated (with the calibration's noise the refined trajectories
-  // were 1.3-2.3x worse on the simulated static sequences).
+  // The window's factor, noise inflated (with the calibration's noise the refined trajectories of
+  // the simulated static sequences were 1.0-2.3x worse).
   if (next) k.to_next = next->imu_from_previous;
   keyframe_archive_.add(k, features_, [this](const FeatureTrack& t) { return inUse(t); });
 }

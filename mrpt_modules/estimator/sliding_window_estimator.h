@@ -146,9 +146,10 @@ class SlidingWindowEstimator {
   double timeOffset() const { return time_offset_; }
   /// What the time-offset estimation found ("" before it ran).
   const std::string& timeOffsetNote() const { return time_offset_note_; }
-  /// At the end of a run: the window's current planes into the map (the visits under way end),
-  /// then the map's duplicates merged (a plane whose visit started too far from its entry to be
-  /// associated got a new one; their estimates have converged since).
+  /// Once, at the end of a run: the window's current planes into the map (the visits under way
+  /// end), then the map's duplicates merged (a plane whose visit started too far from its entry to
+  /// be associated got a new one; their estimates have converged since), then the batch
+  /// refinement (`batch_refinement`).
   void finishMap();
   /// After finishMap(): the keyframes' body poses from the batch refinement (empty if it did not
   /// run or failed), and its summary.
