@@ -13,6 +13,7 @@
 //               world frame, points X on the plane satisfy n·X = d.
 //   time_offset double[1]  td with t_imu = t_cam + td.
 #include <Eigen/Geometry>
+#include <algorithm>
 
 namespace rpvio {
 
@@ -26,6 +27,20 @@ inline Eigen::Vector3d posePosition(const double* pose) {
 }
 inline Eigen::Quaterniond poseRotation(const double* pose) {
   return Eigen::Quaterniond(pose[6], pose[3], pose[4], pose[5]);
+}
+/// The pose block as a rigid transform (its quaternion normalized).
+inline Eigen::Isometry3d poseIsometry(const double* pose) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = poseRotation(pose).normalized().toRotationMatrix();
+  T.translation() = posePosition(pose);
+  return T;
+}
+/// Writes a rigid transform into a pose block.
+inline void setPoseBlock(const Eigen::Isometry3d& T, double* pose) {
+  const Eigen::Quaterniond q(T.linear());
+  const double p[7] = {
+      T.translation().x(), T.translation().y(), T.translation().z(), q.x(), q.y(), q.z(), q.w()};
+  std::copy(p, p + 7, pose);
 }
 
 }  // namespace rpvio

@@ -55,26 +55,15 @@ BatchRefinement::BatchRefinement(KeyframeArchive& archive, const double* mount,
   std::copy(mount, mount + 7, mount_);
 }
 
-namespace {
-
-Eigen::Isometry3d cameraPose(const double* pose, const Eigen::Isometry3d& T_BC) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = poseRotation(pose).normalized().toRotationMatrix();
-  T.translation() = posePosition(pose);
-  return T * T_BC;
-}
-
-}  // namespace
-
 bool BatchRefinement::solve() {
   auto& keyframes = archive_.keyframes_;
   if (keyframes.size() < 2) return false;
-  Eigen::Isometry3d T_BC = cameraPose(mount_, Eigen::Isometry3d::Identity());
+  const Eigen::Isometry3d T_BC = poseIsometry(mount_);
   std::map<uint64_t, double*> pose_of;
   std::map<uint64_t, Eigen::Isometry3d> cameras;
   for (auto& k : keyframes) {
     pose_of[k.id] = k.pose;
-    cameras[k.id] = cameraPose(k.pose, T_BC);
+    cameras[k.id] = poseIsometry(k.pose) * T_BC;
   }
   const CameraPoseLookup lookup = [&](uint64_t id) { return cameras.at(id); };
 

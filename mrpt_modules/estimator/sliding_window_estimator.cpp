@@ -32,13 +32,6 @@ constexpr size_t kMinPlanePoints = 10;
 constexpr double kMaxPlaneRmsPerDepth = 0.04;
 constexpr double kMinDepth = 0.1, kMaxDepth = 100;
 
-Eigen::Isometry3d bodyPose(const double* pose) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = poseRotation(pose).normalized().toRotationMatrix();
-  T.translation() = posePosition(pose);
-  return T;
-}
-
 /// Appends samples, skipping those not after the last one already there.
 void appendSamples(std::vector<ImuSample>& to, const std::vector<ImuSample>& from) {
   for (const auto& s : from)
@@ -74,10 +67,7 @@ SlidingWindowEstimator::SlidingWindowEstimator(const Calibration& calibration,
        {&window_imu_noise_.accel_noise_density, &window_imu_noise_.gyro_noise_density,
         &window_imu_noise_.accel_random_walk, &window_imu_noise_.gyro_random_walk})
     *density *= options_.imu_noise_inflation;
-  const Eigen::Quaterniond q(calib_.T_BC.linear());
-  const Eigen::Vector3d t = calib_.T_BC.translation();
-  const double m[7] = {t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w()};
-  std::copy(m, m + 7, mount_);
+  setPoseBlock(calib_.T_BC, mount_);
   time_offset_ = calib_.time_offset;
 }
 
@@ -154,7 +144,7 @@ void SlidingWindowEstimator::predict(const Frame& from, Frame& to) const {
 
 Eigen::Isometry3d SlidingWindowEstimator::camera(uint64_t frame_id) const {
   for (const auto& f : window_)
-    if (f->id == frame_id) return bodyPose(f->pose) * calib_.T_BC;
+    if (f->id == frame_id) return poseIsometry(f->pose) * calib_.T_BC;
   return Eigen::Isometry3d::Identity();  // not reached: tracks only reference window frames
 }
 

@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "mrpt_modules/core/parameter_blocks.h"
 #include "mrpt_modules/estimator/batch_refinement.h"
 #include "rawlog_io/sim/simulator.h"
 
@@ -22,21 +23,6 @@ struct Scenario {
   std::map<int, sim::ScenePlane> true_planes;
   double mount[7];
 };
-
-void setPose(const Eigen::Isometry3d& T, double* pose) {
-  const Eigen::Quaterniond q(T.linear());
-  const double p[7] = {
-      T.translation().x(), T.translation().y(), T.translation().z(), q.x(), q.y(), q.z(), q.w()};
-  std::copy(p, p + 7, pose);
-}
-
-Eigen::Isometry3d getPose(const double* pose) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() =
-      Eigen::Quaterniond(pose[6], pose[3], pose[4], pose[5]).normalized().toRotationMatrix();
-  T.translation() = Eigen::Vector3d(pose[0], pose[1], pose[2]);
-  return T;
-}
 
 /// Keyframes every 0.25 s from 0.5 s; a 12x10 grid of plane points born every second, seen 3 s.
 /// The keyframes start from the truth tilted by `tilt_deg` about the first keyframe (a causal
@@ -55,7 +41,7 @@ void build(Scenario& s, double tilt_deg, double break_after = -1) {
       Eigen::AngleAxisd(tilt_deg * M_PI / 180, Eigen::Vector3d::UnitX()).toRotationMatrix();
   start_error.translation() = center - start_error.linear() * center;
   const Calibration calib = sim.calibration();
-  setPose(calib.T_BC, s.mount);
+  setPoseBlock(calib.T_BC, s.mount);
   FeatureManager features;
   struct Landmark {
     Eigen::Vector3d point;
@@ -93,7 +79,7 @@ void build(Scenario& s, double tilt_deg, double break_after = -1) {
     k.id = id;
     k.t = t;
     s.truth.push_back(sim.bodyPose(t));
-    setPose(start_error * s.truth.back(), k.pose);
+    setPoseBlock(start_error * s.truth.back(), k.pose);
     const Eigen::Vector3d v = start_error.linear() * state.v;
     std::copy(v.data(), v.data() + 3, k.speed_bias);
     if (t + kKeyframeStep <= kDuration + 1e-9) {
@@ -141,7 +127,7 @@ Errors solveAndCompare(Scenario& s, size_t segments) {
   Errors e;
   const auto refined = s.archive.trajectory();
   for (size_t k = 0; k < refined.size(); ++k) {
-    const Eigen::Isometry3d T = getPose(refined[k].pose);
+    const Eigen::Isometry3d T = poseIsometry(refined[k].pose);
     e.position_m = std::max(e.position_m, (T.translation() - s.truth[k].translation()).norm());
     e.rotation_deg = std::max(
         e.rotation_deg,
