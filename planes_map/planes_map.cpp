@@ -55,13 +55,25 @@ bool PlanesMap::compatible(const Plane& plane, const Eigen::Vector3d& n, double 
   const double max_angle =
       same_label ? options_.max_label_normal_angle_deg : options_.max_normal_angle_deg;
   const double max_distance = same_label ? options_.max_label_distance_m : options_.max_distance_m;
-  const double angle = std::acos(std::clamp(plane.normal.dot(n), -1.0, 1.0)) * 180 / M_PI;
-  if (angle > max_angle || std::abs(plane.distance - d) > max_distance) return false;
+  const double sign = plane.normal.dot(n) < 0 ? -1 : 1;  // (−n, −d) is the same plane
+  const double angle = std::acos(std::clamp(sign * plane.normal.dot(n), -1.0, 1.0)) * 180 / M_PI;
+  if (angle > max_angle || std::abs(plane.distance - sign * d) > max_distance) return false;
   if (same_label || points.empty() || plane.support.empty()) return true;
   return gapBetween(plane.support, points) <= options_.max_gap_m;
 }
 
 namespace {
+
+/// The observation as (−n, −d) if its normal points away from `reference`: the same plane n·X = d
+/// (the homography residual cannot tell the two apart, so a window's estimate may come back
+/// flipped after a bad stretch). The covariance of (n, d) is unchanged by the sign.
+PlaneObservation orientedLike(const Eigen::Vector3d& reference, PlaneObservation o) {
+  if (reference.dot(o.normal) < 0) {
+    o.normal = -o.normal;
+    o.distance = -o.distance;
+  }
+  return o;
+}
 
 /// The tangent of (n, d) at unit n as columns of ambient 4-vectors: tilts along the plane's
 /// in-plane basis (u, v), then d.
@@ -131,21 +143,23 @@ void PlanesMap::record(Plane& plane, const PlaneObservation& obs) const {
   plane.mask_ids.insert(obs.mask_id);
 }
 
-int PlanesMap::update(const PlaneObservation& obs) {
+int PlanesMap::update(const PlaneObservation& observation) {
   Plane* target = nullptr;
-  const auto linked = mask_to_plane_.find(obs.mask_id);
+  const auto linked = mask_to_plane_.find(observation.mask_id);
   if (linked != mask_to_plane_.end()) {
     for (auto& p : planes_)
-      if (p.id == linked->second && compatible(p, obs.normal, obs.distance, obs.points, true))
+      if (p.id == linked->second &&
+          compatible(p, observation.normal, observation.distance, observation.points, true))
         target = &p;
   }
   if (!target) {
     for (auto& p : planes_)
-      if (compatible(p, obs.normal, obs.distance, obs.points)) {
+      if (compatible(p, observation.normal, observation.distance, observation.points)) {
         target = &p;
         break;
       }
   }
+  const PlaneObservation obs = target ? orientedLike(target->normal, observation) : observation;
   if (!target) {
     Plane p;
     p.id = next_id_++;
@@ -189,8 +203,9 @@ size_t PlanesMap::mergeDuplicates() {
         ++j;
         continue;
       }
-      PlaneObservation as_observation{*other.mask_ids.begin(), other.normal,  other.distance,
-                                      other.covariance,        other.support, other.first_seen};
+      const PlaneObservation as_observation =
+          orientedLike(keep.normal, {*other.mask_ids.begin(), other.normal, other.distance,
+                                     other.covariance, other.support, other.first_seen});
       fuse(keep, as_observation);
       keep.observations += other.observations - 1;
       keep.last_seen = std::max(keep.last_seen, other.last_seen);

@@ -217,6 +217,59 @@ TEST(PlanesMap, VisitsAreFusedOnTheSphereByTheirInformation) {
   EXPECT_NEAR((p.covariance * (Eigen::Vector4d() << p.normal, 0).finished()).norm(), 0, 1e-12);
 }
 
+TEST(PlanesMap, ASignFlippedEstimateIsTheSamePlane) {
+  // (n, d) and (−n, −d) are one plane n·X = d; the homography residual cannot tell them apart, and
+  // a window's estimate came back flipped after a bad stretch (seed 2, C1: a crate face, then a
+  // second map entry).
+  PlanesMap map;
+  PlaneObservation o = tiltedWall(0.0, 17.0, 1.0, 0.05, 1);
+  const int id = map.update(o);
+  // The same visit, flipped: the visit's newest estimate, in the entry's orientation.
+  PlaneObservation flipped = tiltedWall(0.5, 17.02, 1.0, 0.05, 1);
+  flipped.normal = -flipped.normal;
+  flipped.distance = -flipped.distance;
+  EXPECT_EQ(map.update(flipped), id);
+  ASSERT_EQ(map.planes().size(), 1u);
+  EXPECT_NEAR(map.planes()[0].distance, 17.02, 1e-12);
+  EXPECT_GT(map.planes()[0].normal.x(), 0.99);
+  // Another visit under another label, flipped: associated by geometry and fused, not cancelled.
+  flipped.visit = 2;
+  flipped.mask_id = 8;
+  flipped.distance = -17.04;
+  EXPECT_EQ(map.update(flipped), id);
+  ASSERT_EQ(map.planes().size(), 1u);
+  EXPECT_NEAR(map.planes()[0].distance, 17.03, 1e-3);
+  EXPECT_NEAR(map.planes()[0].normal.norm(), 1, 1e-12);
+  EXPECT_GT(map.planes()[0].normal.x(), 0.99);
+}
+
+TEST(PlanesMap, FlippedTwinsMerge) {
+  // Two entries of one crate top, one of them flipped, kept apart until a bridging observation.
+  PlanesMap map;
+  PlaneObservation a;
+  a.mask_id = 1;
+  a.normal = Eigen::Vector3d::UnitZ();
+  a.distance = 1.0;
+  for (int k = 0; k < 10; ++k) a.points.emplace_back(k * 0.1, 0, 1.0);
+  PlaneObservation far = a;
+  far.mask_id = 2;
+  far.normal = -far.normal;
+  far.distance = -1.02;
+  for (auto& p : far.points) p.x() += 3;
+  map.update(a);
+  map.update(far);
+  ASSERT_EQ(map.planes().size(), 2u);
+  PlaneObservation bridge = a;
+  bridge.mask_id = 3;
+  for (int k = 0; k < 40; ++k) bridge.points.emplace_back(k * 0.1, 0, 1.0);
+  map.update(bridge);
+  EXPECT_EQ(map.mergeDuplicates(), 1u);
+  ASSERT_EQ(map.planes().size(), 1u);
+  EXPECT_NEAR(map.planes()[0].normal.z(), 1, 1e-9);
+  EXPECT_GT(map.planes()[0].distance, 1.0);
+  EXPECT_LT(map.planes()[0].distance, 1.02);
+}
+
 TEST(PlanesMap, ParallelPlanesOneMetreApartStaySeparate) {
   PlanesMap map;
   PlaneObservation a;
