@@ -270,8 +270,17 @@ void SlidingWindowEstimator::optimize(bool plane_covariances) {
   }
   report_.planes = planes_with_factors.size();
   if (prior_) problem.AddResidualBlock(new MarginalizationFactor(prior_), nullptr, prior_->blocks);
-  for (auto& [mask, e] : planes_)
-    if (problem.HasParameterBlock(e.normal)) problem.SetManifold(e.normal, &solve_problem.sphere);
+  for (auto& [mask, e] : planes_) {
+    if (!problem.HasParameterBlock(e.normal)) continue;
+    problem.SetManifold(e.normal, &solve_problem.sphere);
+    // A plane in the prior only (its tracks in use fell below kMinPlanePoints) is held: the prior
+    // alone, linearized where the plane was, does not bound it (seed 2 C1: a crate face walked
+    // 180° in 1.5 s, on 4–9 tracks).
+    if (!planes_with_factors.count(mask)) {
+      problem.SetParameterBlockConstant(e.normal);
+      problem.SetParameterBlockConstant(e.distance);
+    }
+  }
   // Gauge: the window cannot observe its yaw and position, so the oldest frame keeps them (its
   // whole pose before a prior exists). Left free, each solve moved the window along them by what
   // the prior's linearization lends them (degrees of yaw within a second on the simulator).
