@@ -18,6 +18,12 @@ double gapBetween(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen
   return std::sqrt(best);
 }
 
+Eigen::Vector3d centroid(const std::vector<Eigen::Vector3d>& points) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const auto& p : points) sum += p;
+  return sum / static_cast<double>(points.size());
+}
+
 }  // namespace
 
 PlanesMapOptions PlanesMapOptions::load(const IniFile& ini, const std::string& s) {
@@ -57,7 +63,11 @@ bool PlanesMap::compatible(const Plane& plane, const Eigen::Vector3d& n, double 
   const double max_distance = same_label ? options_.max_label_distance_m : options_.max_distance_m;
   const double sign = plane.normal.dot(n) < 0 ? -1 : 1;  // (−n, −d) is the same plane
   const double angle = std::acos(std::clamp(sign * plane.normal.dot(n), -1.0, 1.0)) * 180 / M_PI;
-  if (angle > max_angle || std::abs(plane.distance - sign * d) > max_distance) return false;
+  // The offset where the observation is: its points' centroid against the plane (d at the world
+  // origin moves by metres with a few degrees of normal when the plane is 20 m away).
+  const double offset = points.empty() ? std::abs(plane.distance - sign * d)
+                                       : std::abs(plane.signedDistance(centroid(points)));
+  if (angle > max_angle || offset > max_distance) return false;
   if (same_label || points.empty() || plane.support.empty()) return true;
   return gapBetween(plane.support, points) <= options_.max_gap_m;
 }

@@ -101,9 +101,11 @@ TEST(PlanesMap, SameLabelSeenAgainWithDriftKeepsItsEntry) {
   EXPECT_NE(map.update(again), id);
   again.mask_id = 3;
   EXPECT_EQ(map.update(again), id);
-  // Beyond the label's thresholds (1 m) the label does not hold either.
+  // Beyond the label's thresholds (points 1.5 m off, more than 1 m) the label does not hold
+  // either.
   PlaneObservation moved = first;
   moved.distance = 21.5;
+  for (auto& p : moved.points) p.x() = -21.5;
   EXPECT_NE(map.update(moved), id);
 }
 
@@ -115,11 +117,12 @@ TEST(PlanesMap, OneBadWindowEstimateStaysTentative) {
   wall.distance = 20.0;
   for (int k = 0; k < 10; ++k) wall.points.emplace_back(k * 0.3, 20.0, 1.0);
   for (int k = 0; k < 3; ++k) map.update(wall);
-  // One window's estimate of the same wall, 5.5 m and 12 deg off (few points, far away): beyond
-  // the label's thresholds, so an entry of its own, but not confirmed.
+  // One window's estimate of the same wall, 5.5 m and 12 deg off, its points with it (few points,
+  // far away): beyond the label's thresholds, so an entry of its own, but not confirmed.
   PlaneObservation bad = wall;
   bad.normal = Eigen::Vector3d(std::sin(0.21), std::cos(0.21), 0);
   bad.distance = 25.5;
+  for (auto& p : bad.points) p.y() = 25.5;
   const int bad_id = map.update(bad);
   ASSERT_EQ(map.planes().size(), 2u);
   ASSERT_EQ(map.confirmedPlanes().size(), 1u);
@@ -268,6 +271,40 @@ TEST(PlanesMap, FlippedTwinsMerge) {
   EXPECT_NEAR(map.planes()[0].normal.z(), 1, 1e-9);
   EXPECT_GT(map.planes()[0].distance, 1.0);
   EXPECT_LT(map.planes()[0].distance, 1.02);
+}
+
+TEST(PlanesMap, AFarTiltedEstimateIsComparedWhereItsPointsAre) {
+  // A crate face 19 m from the origin (seed 3): one window's estimate 15 deg off, through the same
+  // points. Its d differs by 3.4 m at the origin, but its points lie on the entry.
+  PlanesMap map;
+  const Eigen::Vector3d n(0.565, -0.825, 0), along(0.825, 0.565, 0);
+  const Eigen::Vector3d centre(18.87, -2.96, 1.0);
+  PlaneObservation o;
+  o.mask_id = 25;
+  o.normal = n.normalized();
+  o.distance = o.normal.dot(centre);
+  for (int k = 0; k < 20; ++k)
+    o.points.push_back(centre + (k % 5 - 2) * 0.25 * along +
+                       (k / 5 - 2) * 0.4 * Eigen::Vector3d::UnitZ());
+  PlanesMap other_label_map;
+  const int id = map.update(o);
+  PlaneObservation tilted = o;
+  tilted.normal = Eigen::AngleAxisd(15 * M_PI / 180, Eigen::Vector3d::UnitZ()) * o.normal;
+  tilted.distance = tilted.normal.dot(centre);
+  ASSERT_GT(std::abs(tilted.distance - o.distance), 3.0);
+  EXPECT_EQ(map.update(tilted), id);  // under its label (20 deg)
+  // Under another label the normals must agree to 8 deg.
+  other_label_map.update(o);
+  tilted.mask_id = 26;
+  EXPECT_NE(other_label_map.update(tilted), id);
+  // Points 0.5 m off the entry, under its label: within 1 m, the same; 1.5 m off, another.
+  PlaneObservation off = o;
+  for (auto& p : off.points) p += 0.5 * o.normal;
+  off.distance += 0.5;
+  EXPECT_EQ(map.update(off), id);
+  for (auto& p : off.points) p += 1.0 * o.normal;
+  off.distance += 1.0;
+  EXPECT_NE(map.update(off), id);
 }
 
 TEST(PlanesMap, ParallelPlanesOneMetreApartStaySeparate) {
