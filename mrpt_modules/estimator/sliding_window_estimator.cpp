@@ -274,10 +274,12 @@ void SlidingWindowEstimator::optimize(bool plane_covariances) {
   for (auto& [mask, e] : planes_) {
     if (!problem.HasParameterBlock(e.normal)) continue;
     problem.SetManifold(e.normal, &solve_problem.sphere);
-    // A plane in the prior only (its tracks in use fell below kMinPlanePoints) is held: the prior
-    // alone, linearized where the plane was, does not bound it (seed 2 C1: a crate face walked
-    // 180° in 1.5 s, on 4–9 tracks).
-    if (!planes_with_factors.count(mask)) held.insert(held.end(), {e.normal, e.distance});
+    // A plane in the prior only because its tracks in use fell below kMinPlanePoints is held: the
+    // prior alone, linearized where the plane was, does not bound it (seed 2 C1: a crate face
+    // walked 180° in 1.5 s, on 4–9 tracks). A well-tracked plane without factors (rpvio-single's
+    // other planes) stays free: holding those biased rpvio-single (seed 1 C8 0.041 -> 0.063 m).
+    if (!planes_with_factors.count(mask) && !constrained.count(mask))
+      held.insert(held.end(), {e.normal, e.distance});
   }
   for (double* block : held) problem.SetParameterBlockConstant(block);
   // Gauge: the window cannot observe its yaw and position, so the oldest frame keeps them (its
