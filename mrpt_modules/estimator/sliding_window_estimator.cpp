@@ -278,8 +278,7 @@ void SlidingWindowEstimator::optimize(bool plane_covariances) {
     // prior alone, linearized where the plane was, does not bound it (seed 2 C1: a crate face
     // walked 180° in 1.5 s, on 4–9 tracks). A well-tracked plane without factors (rpvio-single's
     // other planes) stays free: holding those biased rpvio-single (seed 1 C8 0.041 -> 0.063 m).
-    if (!planes_with_factors.count(mask) && !constrained.count(mask))
-      held.insert(held.end(), {e.normal, e.distance});
+    if (!constrained.count(mask)) held.insert(held.end(), {e.normal, e.distance});
   }
   for (double* block : held) problem.SetParameterBlockConstant(block);
   // Gauge: the window cannot observe its yaw and position, so the oldest frame keeps them (its

@@ -246,14 +246,20 @@ TEST(PlanesMap, ASignFlippedEstimateIsTheSamePlane) {
   EXPECT_GT(map.planes()[0].normal.x(), 0.99);
 }
 
+/// A crate top at z = 1 m seen under mask 1: 10 points along x over 0.9 m.
+PlaneObservation crateTop() {
+  PlaneObservation o;
+  o.mask_id = 1;
+  o.normal = Eigen::Vector3d::UnitZ();
+  o.distance = 1.0;
+  for (int k = 0; k < 10; ++k) o.points.emplace_back(k * 0.1, 0, 1.0);
+  return o;
+}
+
 TEST(PlanesMap, FlippedTwinsMerge) {
   // Two entries of one crate top, one of them flipped, kept apart until a bridging observation.
   PlanesMap map;
-  PlaneObservation a;
-  a.mask_id = 1;
-  a.normal = Eigen::Vector3d::UnitZ();
-  a.distance = 1.0;
-  for (int k = 0; k < 10; ++k) a.points.emplace_back(k * 0.1, 0, 1.0);
+  const PlaneObservation a = crateTop();
   PlaneObservation far = a;
   far.mask_id = 2;
   far.normal = -far.normal;
@@ -325,11 +331,7 @@ TEST(PlanesMap, ParallelPlanesOneMetreApartStaySeparate) {
 
 TEST(PlanesMap, CoplanarButFarApartStaySeparateAndDuplicatesMerge) {
   PlanesMap map;
-  PlaneObservation a;
-  a.mask_id = 1;
-  a.normal = Eigen::Vector3d::UnitZ();
-  a.distance = 1.0;
-  for (int k = 0; k < 10; ++k) a.points.emplace_back(k * 0.1, 0, 1.0);
+  const PlaneObservation a = crateTop();
   PlaneObservation far = a;
   far.mask_id = 2;
   for (auto& p : far.points) p.x() += 10;  // another crate top at the same height
