@@ -1,10 +1,12 @@
 #pragma once
 // rpvio-eval: ATE/RPE of one or more estimates against ground truth, table + JSON + plot.
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "apps/evaluation/plane_map_accuracy.h"
+#include "apps/evaluation/plane_visibility.h"
 #include "apps/evaluation/trajectory_metrics.h"
 
 namespace rpvio::apps {
@@ -18,12 +20,17 @@ struct EvalAppOptions {
   // Plane map (planes.yaml of rpvio-slam) against true planes (groundtruth_planes.yaml of
   // rpvio-sim), moved by the first estimate's alignment.
   std::string planes_file, gt_planes_file;
+  // The sequence's rawlog: its plane masks say which true planes were visible for more than
+  // 2 s (eval::kMinVisiblePlanePixels), and the report names those without a map entry.
+  std::string masks_rawlog;
 };
 
 struct EvalAppResult {
   std::vector<std::string> labels;
   std::vector<eval::EvalResult> results;
   std::optional<eval::PlaneMapAccuracy> plane_map;
+  std::optional<std::map<int, double>> visible_s;  // per true plane, with masks_rawlog
+  std::vector<eval::MissingPlane> missing_planes;
 };
 
 /// Reads the files (InputError on bad content or no overlap, naming the estimate file), evaluates,
