@@ -13,6 +13,7 @@
 namespace rpvio::eval {
 
 constexpr int kMinVisiblePlanePixels = 10 * 21 * 21;
+constexpr double kMinVisibleSeconds = 2.0;  // issue 8: "seen for more than 2 s"
 
 /// Visible time per mask label (1..254) over a sequence of masks.
 class PlaneVisibility {
@@ -43,6 +44,6 @@ struct MissingPlane {
 std::vector<MissingPlane> missingPlanes(const PlaneMapAccuracy& accuracy,
                                         const std::vector<Plane>& truth,
                                         const std::map<int, double>& visible_s,
-                                        double min_seconds = 2.0);
+                                        double min_seconds = kMinVisibleSeconds);
 
 }  // namespace rpvio::eval

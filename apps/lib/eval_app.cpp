@@ -126,8 +126,9 @@ std::string formatPlaneMapReport(const eval::PlaneMapAccuracy& m) {
 
 std::string formatMissingPlanes(const std::map<int, double>& visible_s,
                                 const std::vector<eval::MissingPlane>& missing) {
-  const auto visible = std::count_if(visible_s.begin(), visible_s.end(),
-                                     [](const auto& v) { return v.second > 2.0; });
+  const auto visible = std::count_if(visible_s.begin(), visible_s.end(), [](const auto& v) {
+    return v.second > eval::kMinVisibleSeconds;
+  });
   std::ostringstream out;
   out << "missing: " << missing.size() << " of the " << visible
       << " labels visible for more than 2 s have no map entry";
