@@ -4,6 +4,7 @@
 #include <array>
 #include <set>
 
+#include "mrpt_modules/frontend/uniform_plane_region.h"
 #include "rawlog_io/rawlog_labels.h"
 #include "rawlog_io/rawlog_reader.h"
 
@@ -11,16 +12,23 @@ namespace rpvio::eval {
 
 void PlaneVisibility::addMask(double t, const cv::Mat& mask) {
   times_.push_back(t);
-  std::array<int, 256> pixels{};
+  uniformPlaneRegion(mask, 2 * window_margin_ + 1, 1, lowest_, highest_, trackable_);
+  std::array<int, 256> seen{}, trackable{};
   for (int r = 0; r < mask.rows; ++r) {
-    const uint8_t* row = mask.ptr<uint8_t>(r);
-    for (int c = 0; c < mask.cols; ++c) ++pixels[row[c]];
+    const uint8_t* label = mask.ptr<uint8_t>(r);
+    const uint8_t* uniform = trackable_.ptr<uint8_t>(r);
+    for (int c = 0; c < mask.cols; ++c) {
+      ++seen[label[c]];
+      if (uniform[c]) ++trackable[label[c]];
+    }
   }
-  for (int label = 1; label < 255; ++label)
-    if (pixels[label] >= min_pixels_) ++frames_[label];
+  for (int label = 1; label < 255; ++label) {
+    if (seen[label] >= min_pixels_) ++seen_frames_[label];
+    if (trackable[label] >= min_pixels_) ++trackable_frames_[label];
+  }
 }
 
-std::map<int, double> PlaneVisibility::seconds() const {
+std::map<int, LabelVisibility> PlaneVisibility::seconds() const {
   std::vector<double> intervals;
   for (size_t k = 1; k < times_.size(); ++k) intervals.push_back(times_[k] - times_[k - 1]);
   double frame_s = 0;
@@ -28,14 +36,15 @@ std::map<int, double> PlaneVisibility::seconds() const {
     std::nth_element(intervals.begin(), intervals.begin() + intervals.size() / 2, intervals.end());
     frame_s = intervals[intervals.size() / 2];
   }
-  std::map<int, double> out;
-  for (const auto& [label, frames] : frames_) out[label] = frames * frame_s;
+  std::map<int, LabelVisibility> out;
+  for (const auto& [label, frames] : seen_frames_) out[label].seen_s = frames * frame_s;
+  for (const auto& [label, frames] : trackable_frames_) out[label].trackable_s = frames * frame_s;
   return out;
 }
 
-std::map<int, double> planeVisibleSeconds(const std::string& rawlog, int min_pixels) {
+std::map<int, LabelVisibility> planeVisibleSeconds(const std::string& rawlog) {
   RawlogReader reader(rawlog);
-  PlaneVisibility visibility(min_pixels);
+  PlaneVisibility visibility;
   while (const auto obs = reader.next()) {
     if (obs->sensorLabel != labels::kPlaneMask) continue;
     const auto* image = dynamic_cast<const mrpt::obs::CObservationImage*>(obs.get());
@@ -45,17 +54,18 @@ std::map<int, double> planeVisibleSeconds(const std::string& rawlog, int min_pix
   return visibility.seconds();
 }
 
-std::vector<MissingPlane> missingPlanes(const PlaneMapAccuracy& accuracy,
-                                        const std::vector<Plane>& truth,
-                                        const std::map<int, double>& visible_s,
-                                        double min_seconds) {
+MissingPlanes missingPlanes(const PlaneMapAccuracy& accuracy, const std::vector<Plane>& truth,
+                            const std::map<int, LabelVisibility>& visible, double min_seconds) {
   std::set<int> in_map;
   for (const auto& p : accuracy.planes) in_map.insert(p.true_id);
-  std::vector<MissingPlane> out;
+  MissingPlanes out;
   for (const Plane& p : truth) {
-    const auto v = visible_s.find(p.id);
-    if (v != visible_s.end() && v->second > min_seconds && !in_map.count(p.id))
-      out.push_back({p.id, v->second});
+    const auto v = visible.find(p.id);
+    if (v == visible.end() || in_map.count(p.id)) continue;
+    if (v->second.trackable_s > min_seconds)
+      out.missing.push_back({p.id, v->second});
+    else if (v->second.seen_s > min_seconds)
+      out.untrackable.push_back({p.id, v->second});
   }
   return out;
 }

@@ -1,8 +1,12 @@
 #pragma once
 // How long each plane is visible in a sequence's plane masks, and which of the planes visible for
 // long enough have no entry in a plane map (issue 8: every plane seen for more than 2 s is in the
-// map). Visible means covering at least kMinVisiblePlanePixels in a mask: room for the 10 tracks
-// (kMinPlanePoints) a plane needs to enter the estimator's window, one KLT window (21 px) apart.
+// map). Two measures per label:
+// - seen: the label covers at least kMinVisiblePlanePixels of the mask;
+// - trackable: so many of its pixels have no other label within the tracker's window margin
+//   (the pixels where it detects corners and keeps tracks): room for the 10 tracks
+//   (kMinPlanePoints) a plane needs to enter the estimator's window, one KLT window (21 px) apart.
+// A face 70 px across is seen (4900 px) but not trackable (50 x 50 px): it never holds 10 tracks.
 #include <map>
 #include <opencv2/core.hpp>
 #include <string>
@@ -13,37 +17,48 @@
 namespace rpvio::eval {
 
 constexpr int kMinVisiblePlanePixels = 10 * 21 * 21;
+constexpr int kTrackerWindowMargin = 10;    // TrackerOptions::window_margin of every mode
 constexpr double kMinVisibleSeconds = 2.0;  // issue 8: "seen for more than 2 s"
+
+struct LabelVisibility {
+  double seen_s = 0;
+  double trackable_s = 0;
+};
 
 /// Visible time per mask label (1..254) over a sequence of masks.
 class PlaneVisibility {
  public:
-  explicit PlaneVisibility(int min_pixels = kMinVisiblePlanePixels) : min_pixels_(min_pixels) {}
+  explicit PlaneVisibility(int min_pixels = kMinVisiblePlanePixels,
+                           int window_margin = kTrackerWindowMargin)
+      : min_pixels_(min_pixels), window_margin_(window_margin) {}
   /// A CV_8UC1 label mask stamped t (seconds, after the previous one).
   void addMask(double t, const cv::Mat& mask);
-  /// Seconds per label: the frames it is visible in, each counting the median interval between
-  /// masks (a missing frame does not count; the first one does).
-  std::map<int, double> seconds() const;
+  /// Per label seen in at least one frame: the frames it is seen / trackable in, each counting the
+  /// median interval between masks (a missing frame does not count; the first one does).
+  std::map<int, LabelVisibility> seconds() const;
 
  private:
-  int min_pixels_;
+  int min_pixels_, window_margin_;
   std::vector<double> times_;
-  std::map<int, size_t> frames_;  // label → frames visible
+  std::map<int, size_t> seen_frames_, trackable_frames_;
+  cv::Mat lowest_, highest_, trackable_;  // buffers
 };
 
 /// Every PLANE_MASK of `rawlog` (InputError naming the file and entry on bad input).
-std::map<int, double> planeVisibleSeconds(const std::string& rawlog,
-                                          int min_pixels = kMinVisiblePlanePixels);
+std::map<int, LabelVisibility> planeVisibleSeconds(const std::string& rawlog);
 
 struct MissingPlane {
   int true_id = 0;
-  double visible_s = 0;
+  LabelVisibility visible;
 };
 
-/// The true planes visible for more than `min_seconds` without an entry in the evaluated map.
-std::vector<MissingPlane> missingPlanes(const PlaneMapAccuracy& accuracy,
-                                        const std::vector<Plane>& truth,
-                                        const std::map<int, double>& visible_s,
-                                        double min_seconds = kMinVisibleSeconds);
+/// The true planes without an entry in the evaluated map that were trackable for more than
+/// `min_seconds` (`missing`), or only seen for that long (`untrackable`).
+struct MissingPlanes {
+  std::vector<MissingPlane> missing, untrackable;
+};
+MissingPlanes missingPlanes(const PlaneMapAccuracy& accuracy, const std::vector<Plane>& truth,
+                            const std::map<int, LabelVisibility>& visible,
+                            double min_seconds = kMinVisibleSeconds);
 
 }  // namespace rpvio::eval

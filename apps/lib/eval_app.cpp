@@ -28,8 +28,9 @@ const char* kUsage =
     "  --planes: the plane map of the first estimate, matched to the true planes by mask label\n"
     "  and moved by that estimate's alignment: map entries per true plane, normal and offset\n"
     "  errors, and the standard deviations the map's covariance gives them. --rawlog: the\n"
-    "  sequence's plane masks; the true planes visible for more than 2 s (covering 4410 px,\n"
-    "  room for 10 tracks 21 px apart) that have no map entry are listed as missing.\n";
+    "  sequence's plane masks; the true planes without a map entry that were trackable for more\n"
+    "  than 2 s (4410 px with no other label within the tracker's 10 px margin: room for 10\n"
+    "  tracks 21 px apart) are listed as missing, those only seen (4410 px) as untrackable.\n";
 
 Trajectory readWithFormat(const std::string& path, const std::string& format) {
   if (format.empty()) return readTrajectory(path);
@@ -88,11 +89,15 @@ void writeJson(const EvalAppOptions& opt, const EvalAppResult& res) {
       }
       out << "]";
       if (res.visible_s) {
-        out << ",\n    \"missing\": [";
-        for (const auto& m : res.missing_planes)
-          out << (&m == &res.missing_planes.front() ? "" : ", ") << "{\"id\": " << m.true_id
-              << ", \"visible_s\": " << m.visible_s << "}";
-        out << "]";
+        for (const auto* list : {&res.missing_planes.missing, &res.missing_planes.untrackable}) {
+          out << ",\n    \"" << (list == &res.missing_planes.missing ? "missing" : "untrackable")
+              << "\": [";
+          for (const auto& m : *list)
+            out << (&m == &list->front() ? "" : ", ") << "{\"id\": " << m.true_id
+                << ", \"seen_s\": " << m.visible.seen_s
+                << ", \"trackable_s\": " << m.visible.trackable_s << "}";
+          out << "]";
+        }
       }
       out << "}";
     }
@@ -124,18 +129,26 @@ std::string formatPlaneMapReport(const eval::PlaneMapAccuracy& m) {
   return out.str();
 }
 
-std::string formatMissingPlanes(const std::map<int, double>& visible_s,
-                                const std::vector<eval::MissingPlane>& missing) {
-  const auto visible = std::count_if(visible_s.begin(), visible_s.end(), [](const auto& v) {
-    return v.second > eval::kMinVisibleSeconds;
+std::string formatMissingPlanes(const std::map<int, eval::LabelVisibility>& visible_s,
+                                const eval::MissingPlanes& missing) {
+  const auto trackable = std::count_if(visible_s.begin(), visible_s.end(), [](const auto& v) {
+    return v.second.trackable_s > eval::kMinVisibleSeconds;
   });
   std::ostringstream out;
-  out << "missing: " << missing.size() << " of the " << visible
-      << " labels visible for more than 2 s have no map entry";
-  for (const auto& m : missing) {
-    char item[64];
-    std::snprintf(item, sizeof(item), "%s%d (%.1f s)", &m == &missing.front() ? ": " : ", ",
-                  m.true_id, m.visible_s);
+  out << "missing: " << missing.missing.size() << " of the " << trackable
+      << " labels trackable for more than 2 s have no map entry";
+  char item[96];
+  for (const auto& m : missing.missing) {
+    std::snprintf(item, sizeof(item), "%s%d (%.1f s)", &m == &missing.missing.front() ? ": " : ", ",
+                  m.true_id, m.visible.trackable_s);
+    out << item;
+  }
+  out << "\nuntrackable: " << missing.untrackable.size()
+      << " more labels seen for more than 2 s, trackable for at most 2 s, have no map entry";
+  for (const auto& m : missing.untrackable) {
+    std::snprintf(item, sizeof(item), "%s%d (seen %.1f s, trackable %.1f s)",
+                  &m == &missing.untrackable.front() ? ": " : ", ", m.true_id, m.visible.seen_s,
+                  m.visible.trackable_s);
     out << item;
   }
   out << "\n";

@@ -20,8 +20,8 @@ struct EvalAppOptions {
   // Plane map (planes.yaml of rpvio-slam) against true planes (groundtruth_planes.yaml of
   // rpvio-sim), moved by the first estimate's alignment.
   std::string planes_file, gt_planes_file;
-  // The sequence's rawlog: its plane masks say which true planes were visible for more than
-  // 2 s (eval::kMinVisiblePlanePixels), and the report names those without a map entry.
+  // The sequence's rawlog: its plane masks say which true planes were seen and trackable for more
+  // than 2 s (eval::PlaneVisibility), and the report names those without a map entry.
   std::string masks_rawlog;
 };
 
@@ -29,8 +29,8 @@ struct EvalAppResult {
   std::vector<std::string> labels;
   std::vector<eval::EvalResult> results;
   std::optional<eval::PlaneMapAccuracy> plane_map;
-  std::optional<std::map<int, double>> visible_s;  // per true plane, with masks_rawlog
-  std::vector<eval::MissingPlane> missing_planes;
+  std::optional<std::map<int, eval::LabelVisibility>> visible_s;  // per label, with masks_rawlog
+  eval::MissingPlanes missing_planes;
 };
 
 /// Reads the files (InputError on bad content or no overlap, naming the estimate file), evaluates,

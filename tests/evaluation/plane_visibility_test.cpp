@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "apps/evaluation/plane_visibility.h"
+#include "mrpt_modules/frontend/feature_tracker.h"
 #include "planes_map/plane_map_exporters.h"
 #include "tests/test_util.h"
 
@@ -17,7 +18,7 @@ cv::Mat maskWith(int label, int pixels) {
 }
 
 TEST(PlaneVisibility, CountsFramesWhereALabelCoversEnoughPixels) {
-  eval::PlaneVisibility visibility(100);
+  eval::PlaneVisibility visibility(100, 0);  // no margin: every pixel of a plane is trackable
   double t = 0;
   for (int k = 0; k < 60; ++k) {
     // One frame dropped (a 0.1 s gap): the frame interval is still the median, 0.05 s.
@@ -28,22 +29,47 @@ TEST(PlaneVisibility, CountsFramesWhereALabelCoversEnoughPixels) {
   }
   const auto seconds = visibility.seconds();
   ASSERT_EQ(seconds.count(3), 1u);
-  EXPECT_NEAR(seconds.at(3), 50 * 0.05, 1e-9);
-  EXPECT_EQ(seconds.count(4), 0u);
+  EXPECT_NEAR(seconds.at(3).seen_s, 50 * 0.05, 1e-9);
+  EXPECT_NEAR(seconds.at(3).trackable_s, 50 * 0.05, 1e-9);
+  EXPECT_EQ(seconds.count(4), 0u);  // below 100 px: never seen
   EXPECT_EQ(seconds.count(0), 0u);  // 0: not a plane
 }
 
+TEST(PlaneVisibility, ASmallFaceIsSeenButHasNoRoomForTenTracks) {
+  // The tracker's margin and spacing, which the default thresholds stand for.
+  EXPECT_EQ(eval::kTrackerWindowMargin, TrackerOptions().window_margin);
+  EXPECT_EQ(eval::kMinVisiblePlanePixels,
+            10 * TrackerOptions().klt_window * TrackerOptions().klt_window);
+  // Label 5: a 70 px square (4900 px), 50 x 50 px away from the background's 10 px margin.
+  // Label 6: a 90 px square, 70 x 70 = 4900 px trackable.
+  cv::Mat m(200, 200, CV_8U, cv::Scalar(0));
+  m(cv::Rect(10, 10, 70, 70)) = 5;
+  m(cv::Rect(100, 100, 90, 90)) = 6;
+  eval::PlaneVisibility visibility;
+  for (int k = 0; k < 40; ++k) visibility.addMask(0.05 * k, m);
+  const auto seconds = visibility.seconds();
+  EXPECT_NEAR(seconds.at(5).seen_s, 2.0, 1e-9);
+  EXPECT_EQ(seconds.at(5).trackable_s, 0.0);
+  EXPECT_NEAR(seconds.at(6).seen_s, 2.0, 1e-9);
+  EXPECT_NEAR(seconds.at(6).trackable_s, 2.0, 1e-9);
+}
+
 TEST(PlaneVisibility, MissingPlanesAreTheLongVisibleOnesWithoutAnEntry) {
-  std::vector<Plane> truth(4);
-  for (int k = 0; k < 4; ++k) truth[k].id = k + 1;
+  std::vector<Plane> truth(5);
+  for (int k = 0; k < 5; ++k) truth[k].id = k + 1;
   eval::PlaneMapAccuracy accuracy;
   accuracy.planes.resize(1);
   accuracy.planes[0].true_id = 1;
-  const std::map<int, double> visible = {{1, 10.0}, {2, 2.5}, {3, 2.0}, {9, 30.0}};
+  const std::map<int, eval::LabelVisibility> visible = {
+      {1, {10.0, 10.0}}, {2, {2.5, 2.5}}, {3, {2.0, 2.0}}, {5, {7.5, 1.0}}, {9, {30.0, 30.0}}};
   const auto missing = eval::missingPlanes(accuracy, truth, visible);
-  ASSERT_EQ(missing.size(), 1u);  // 1 is in the map, 3 not more than 2 s, 4 never, 9 no plane
-  EXPECT_EQ(missing[0].true_id, 2);
-  EXPECT_DOUBLE_EQ(missing[0].visible_s, 2.5);
+  // 1 is in the map, 3 not more than 2 s, 4 never, 9 no plane; 5 seen but not trackable.
+  ASSERT_EQ(missing.missing.size(), 1u);
+  EXPECT_EQ(missing.missing[0].true_id, 2);
+  EXPECT_DOUBLE_EQ(missing.missing[0].visible.trackable_s, 2.5);
+  ASSERT_EQ(missing.untrackable.size(), 1u);
+  EXPECT_EQ(missing.untrackable[0].true_id, 5);
+  EXPECT_DOUBLE_EQ(missing.untrackable[0].visible.seen_s, 7.5);
 }
 
 TEST(PlaneVisibility, EvalAppNamesATruePlaneTheMapLacks) {
