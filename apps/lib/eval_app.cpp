@@ -92,10 +92,10 @@ void writeJson(const EvalAppOptions& opt, const EvalAppResult& res) {
         for (const auto* list : {&res.missing_planes.missing, &res.missing_planes.untrackable}) {
           out << ",\n    \"" << (list == &res.missing_planes.missing ? "missing" : "untrackable")
               << "\": [";
-          for (const auto& m : *list)
-            out << (&m == &list->front() ? "" : ", ") << "{\"id\": " << m.true_id
-                << ", \"seen_s\": " << m.visible.seen_s
-                << ", \"trackable_s\": " << m.visible.trackable_s << "}";
+          for (const auto& plane : *list)
+            out << (&plane == &list->front() ? "" : ", ") << "{\"id\": " << plane.true_id
+                << ", \"seen_s\": " << plane.visible.seen_s
+                << ", \"trackable_s\": " << plane.visible.trackable_s << "}";
           out << "]";
         }
       }

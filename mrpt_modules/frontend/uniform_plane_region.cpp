@@ -22,7 +22,7 @@ void uniformPlaneRegion(const cv::Mat& mask, int kernel, int iterations, cv::Mat
     uint8_t* out = region.ptr<uint8_t>(y);
     // Non-short-circuit tests and a loop bound in a local: the loop vectorizes.
     for (int x = 0; x < cols; ++x)
-      out[x] = (lo[x] == hi[x]) & (label[x] != 0) & (label[x] != 255) ? 255 : 0;
+      out[x] = ((lo[x] == hi[x]) & (label[x] != 0) & (label[x] != 255)) ? 255 : 0;
   }
 }
 
