@@ -95,8 +95,10 @@ TEST(PlaneVisibility, EvalAppNamesATruePlaneTheMapLacks) {
             0)
       << out;
   EXPECT_NE(out.find("have no map entry: 1 ("), std::string::npos) << out;
-  EXPECT_NE(test::readFile(dir.file("r.json")).find("\"missing\": [{\"id\": 1, "),
-            std::string::npos);
+  const std::string json = test::readFile(dir.file("r.json"));
+  EXPECT_NE(json.find("\"missing\": [{\"id\": 1, \"seen_s\": "), std::string::npos) << json;
+  // The floor is trackable, and every other true plane has an entry.
+  EXPECT_NE(json.find("\"untrackable\": []"), std::string::npos) << json;
   // --rawlog without a plane map is a usage error; a missing rawlog an input error naming it.
   EXPECT_EQ(test::runCommand(test::binDir() + "/rpvio-eval --gt " + gt + " --est " + gt +
                                  " --rawlog " + dir.file("seq/seq.rawlog"),
