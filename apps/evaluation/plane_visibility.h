@@ -13,11 +13,13 @@
 #include <vector>
 
 #include "apps/evaluation/plane_map_accuracy.h"
+#include "mrpt_modules/frontend/feature_tracker.h"
 
 namespace rpvio::eval {
 
-constexpr int kMinVisiblePlanePixels = 10 * 21 * 21;
-constexpr int kTrackerWindowMargin = 10;    // TrackerOptions::window_margin of every mode
+constexpr int kTrackerWindowMargin = TrackerOptions{}.window_margin;  // every mode's config too
+constexpr int kMinVisiblePlanePixels =
+    10 * TrackerOptions{}.klt_window * TrackerOptions{}.klt_window;
 constexpr double kMinVisibleSeconds = 2.0;  // issue 8: "seen for more than 2 s"
 
 struct LabelVisibility {

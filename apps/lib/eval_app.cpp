@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <iostream>
 #include <sstream>
+#include <utility>
 
 #include "apps/evaluation/trajectory_plot.h"
 #include "apps/lib/command_line.h"
@@ -89,9 +90,10 @@ void writeJson(const EvalAppOptions& opt, const EvalAppResult& res) {
       }
       out << "]";
       if (res.visible_s) {
-        for (const auto* list : {&res.missing_planes.missing, &res.missing_planes.untrackable}) {
-          out << ",\n    \"" << (list == &res.missing_planes.missing ? "missing" : "untrackable")
-              << "\": [";
+        const auto& missing = res.missing_planes;
+        for (const auto& [name, list] : {std::pair{"missing", &missing.missing},
+                                         std::pair{"untrackable", &missing.untrackable}}) {
+          out << ",\n    \"" << name << "\": [";
           for (const auto& plane : *list)
             out << (&plane == &list->front() ? "" : ", ") << "{\"id\": " << plane.true_id
                 << ", \"seen_s\": " << plane.visible.seen_s
