@@ -46,7 +46,7 @@ fuzz:
 	@scripts/fuzz.sh build-fuzz $(FUZZ_SECONDS) $(JOBS)
 
 format:
-	find rawlog_io planes_map mrpt_modules apps tests -name '*.h' -o -name '*.cpp' | xargs clang-format -i
+	find common rawlog_io sim planes_map mrpt_modules evaluation apps tests benchmarks -name '*.h' -o -name '*.cpp' | xargs clang-format -i
 
 clean:
 	rm -rf $(BUILD_DIR) build-asan build-fuzz

@@ -10,9 +10,9 @@
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
-#include "rawlog_io/atomic_file.h"
-#include "rawlog_io/input_error.h"
-#include "rawlog_io/input_file.h"
+#include "common/atomic_file.h"
+#include "common/input_error.h"
+#include "common/input_file.h"
 
 namespace rpvio {
 namespace {

@@ -23,8 +23,8 @@
 #include <string>
 #include <vector>
 
+#include "common/sensor_types.h"
 #include "planes_map/plane.h"
-#include "rawlog_io/trajectory_io.h"
 
 namespace rpvio {
 

@@ -5,7 +5,7 @@
 #include <limits>
 #include <sstream>
 
-#include "rawlog_io/input_error.h"
+#include "common/input_error.h"
 
 namespace rpvio {
 namespace {
@@ -25,36 +25,6 @@ Eigen::Vector3d centroid(const std::vector<Eigen::Vector3d>& points) {
 }
 
 }  // namespace
-
-PlanesMapOptions PlanesMapOptions::load(const IniFile& ini, const std::string& s) {
-  PlanesMapOptions o;
-  o.max_normal_angle_deg = ini.numberOr(s, "max_normal_angle_deg", o.max_normal_angle_deg);
-  o.max_distance_m = ini.numberOr(s, "max_distance_m", o.max_distance_m);
-  o.max_gap_m = ini.numberOr(s, "max_gap_m", o.max_gap_m);
-  o.max_label_normal_angle_deg =
-      ini.numberOr(s, "max_label_normal_angle_deg", o.max_label_normal_angle_deg);
-  o.max_label_distance_m = ini.numberOr(s, "max_label_distance_m", o.max_label_distance_m);
-  o.voxel_size_m = ini.numberOr(s, "voxel_size_m", o.voxel_size_m);
-  o.max_support_points = static_cast<size_t>(
-      ini.numberOr(s, "max_support_points", static_cast<double>(o.max_support_points)));
-  const double min_observations =
-      ini.numberOr(s, "min_observations", static_cast<double>(o.min_observations));
-  if (!(min_observations >= 1))
-    throw InputError(ini.path(), "line " + std::to_string(ini.line(s, "min_observations")),
-                     "min_observations must be 1 or more");
-  o.min_observations = static_cast<size_t>(min_observations);
-  return o;
-}
-
-std::string PlanesMapOptions::describe() const {
-  std::ostringstream out;
-  out << "[PlanesMap] max_normal_angle_deg=" << max_normal_angle_deg
-      << " max_distance_m=" << max_distance_m << " max_gap_m=" << max_gap_m
-      << " max_label_normal_angle_deg=" << max_label_normal_angle_deg
-      << " max_label_distance_m=" << max_label_distance_m << " voxel_size_m=" << voxel_size_m
-      << " max_support_points=" << max_support_points << " min_observations=" << min_observations;
-  return out.str();
-}
 
 bool PlanesMap::compatible(const Plane& plane, const Eigen::Vector3d& n, double d,
                            const std::vector<Eigen::Vector3d>& points, bool same_label) const {

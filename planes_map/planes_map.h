@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "common/options.h"
 #include "planes_map/plane.h"
-#include "rawlog_io/ini_file.h"
 
 namespace rpvio {
 
@@ -24,9 +24,25 @@ struct PlanesMapOptions {
   // one window's bad estimate of a known surface (a far wall with few points).
   size_t min_observations = 3;
 
+  template <class Visitor>
+  void fields(Visitor& v) {
+    RPVIO_OPTION(v, max_normal_angle_deg);
+    RPVIO_OPTION(v, max_distance_m);
+    RPVIO_OPTION(v, max_gap_m);
+    RPVIO_OPTION(v, max_label_normal_angle_deg);
+    RPVIO_OPTION(v, max_label_distance_m);
+    RPVIO_OPTION(v, voxel_size_m);
+    RPVIO_OPTION(v, max_support_points);
+    RPVIO_OPTION(v, min_observations);
+  }
+  void validate(const OptionsLoader& loader) const {
+    loader.require(min_observations >= 1, "min_observations", "must be 1 or more");
+  }
   /// Reads the keys present in `section`; InputError (file, line) on a bad value.
-  static PlanesMapOptions load(const IniFile& ini, const std::string& section);
-  std::string describe() const;
+  static PlanesMapOptions load(const IniFile& ini, const std::string& section) {
+    return loadOptions<PlanesMapOptions>(ini, section);
+  }
+  std::string describe() const { return describeOptions(*this); }
 };
 
 /// What the estimator knows of a plane after an optimization.

@@ -7,10 +7,10 @@
 #include <map>
 #include <sstream>
 
-#include "rawlog_io/atomic_file.h"
-#include "rawlog_io/ini_file.h"
-#include "rawlog_io/input_error.h"
-#include "rawlog_io/input_file.h"
+#include "common/atomic_file.h"
+#include "common/ini_file.h"
+#include "common/input_error.h"
+#include "common/input_file.h"
 
 namespace rpvio {
 namespace {
@@ -37,7 +37,7 @@ int pixelCount(const IniFile& ini, const std::string& key) {
 
 }  // namespace
 
-Calibration Calibration::load(const std::string& path) {
+Calibration loadCalibration(const std::string& path) {
   requireRegularFile(path, "calibration file");
   const IniFile ini(path);
   Calibration c;
@@ -81,26 +81,26 @@ Calibration Calibration::load(const std::string& path) {
   return c;
 }
 
-void Calibration::save(const std::string& path) const {
-  writeFileAtomically(path, [this](std::ostream& out) {
+void saveCalibration(const std::string& path, const Calibration& c) {
+  writeFileAtomically(path, [&c](std::ostream& out) {
     out << std::setprecision(17);
     out << "# rpvio calibration (see rawlog_io/calibration.h for the meaning of every key)\n";
-    out << "[camera]\nwidth = " << camera.width << "\nheight = " << camera.height
-        << "\nfx = " << camera.fx << "\nfy = " << camera.fy << "\ncx = " << camera.cx
-        << "\ncy = " << camera.cy << "\ndistortion_model = " << modelName(camera.model) << "\n";
-    if (camera.model != DistortionModel::None)
-      out << "distortion = " << camera.distortion[0] << " " << camera.distortion[1] << " "
-          << camera.distortion[2] << " " << camera.distortion[3] << "\n";
-    const Eigen::Quaterniond q(T_BC.linear());
-    const Eigen::Vector3d& p = T_BC.translation();
+    out << "[camera]\nwidth = " << c.camera.width << "\nheight = " << c.camera.height
+        << "\nfx = " << c.camera.fx << "\nfy = " << c.camera.fy << "\ncx = " << c.camera.cx
+        << "\ncy = " << c.camera.cy << "\ndistortion_model = " << modelName(c.camera.model) << "\n";
+    if (c.camera.model != DistortionModel::None)
+      out << "distortion = " << c.camera.distortion[0] << " " << c.camera.distortion[1] << " "
+          << c.camera.distortion[2] << " " << c.camera.distortion[3] << "\n";
+    const Eigen::Quaterniond q(c.T_BC.linear());
+    const Eigen::Vector3d& p = c.T_BC.translation();
     out << "\n[T_BC]\ntranslation = " << p.x() << " " << p.y() << " " << p.z()
         << "\nrotation = " << q.x() << " " << q.y() << " " << q.z() << " " << q.w() << "\n";
-    out << "\n[time]\noffset = " << time_offset << "\n";
-    out << "\n[imu]\ngyro_noise_density = " << imu.gyro_noise_density
-        << "\naccel_noise_density = " << imu.accel_noise_density
-        << "\ngyro_random_walk = " << imu.gyro_random_walk
-        << "\naccel_random_walk = " << imu.accel_random_walk << "\nrate_hz = " << imu.rate_hz
-        << "\ngravity = " << imu.gravity << "\n";
+    out << "\n[time]\noffset = " << c.time_offset << "\n";
+    out << "\n[imu]\ngyro_noise_density = " << c.imu.gyro_noise_density
+        << "\naccel_noise_density = " << c.imu.accel_noise_density
+        << "\ngyro_random_walk = " << c.imu.gyro_random_walk
+        << "\naccel_random_walk = " << c.imu.accel_random_walk << "\nrate_hz = " << c.imu.rate_hz
+        << "\ngravity = " << c.imu.gravity << "\n";
   });
 }
 

@@ -1,7 +1,7 @@
 #include "rawlog_io/euroc_csv.h"
 
-#include "rawlog_io/input_error.h"
-#include "rawlog_io/text_table.h"
+#include "common/input_error.h"
+#include "common/text_table.h"
 
 namespace rpvio {
 namespace {

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "rawlog_io/rawlog_writer.h"
+#include "common/sensor_types.h"
 
 namespace rpvio {
 

@@ -8,11 +8,12 @@
 #include <regex>
 #include <sstream>
 
+#include "common/input_error.h"
+#include "common/input_file.h"
+#include "common/text_table.h"
+#include "rawlog_io/calibration.h"
 #include "rawlog_io/euroc_csv.h"
-#include "rawlog_io/input_error.h"
-#include "rawlog_io/input_file.h"
 #include "rawlog_io/rawlog_writer.h"
-#include "rawlog_io/text_table.h"
 #include "rawlog_io/trajectory_io.h"
 
 namespace fs = std::filesystem;
@@ -204,7 +205,7 @@ EurocImportCounts importEuroc(const EurocImportOptions& opt,
     const size_t done = i_img + i_imu + i_gt;
     if (progress && (done % 2000 == 0 || done == total)) progress(done, total);
   }
-  calib.save(calib_path);
+  saveCalibration(calib_path, calib);
   writer.close();
   return counts;
 }

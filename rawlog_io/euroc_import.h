@@ -5,7 +5,7 @@
 #include <functional>
 #include <string>
 
-#include "rawlog_io/calibration.h"
+#include "common/sensor_types.h"
 
 namespace rpvio {
 

@@ -4,7 +4,7 @@
 #include <mrpt/poses/CPose3D.h>
 #include <Eigen/Geometry>
 
-#include "rawlog_io/calibration.h"
+#include "common/sensor_types.h"
 
 namespace rpvio {
 

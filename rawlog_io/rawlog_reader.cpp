@@ -11,8 +11,8 @@
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
-#include "rawlog_io/input_error.h"
-#include "rawlog_io/input_file.h"
+#include "common/input_error.h"
+#include "common/input_file.h"
 #include "rawlog_io/mrpt_conversions.h"
 #include "rawlog_io/png_gray_decoder.h"
 

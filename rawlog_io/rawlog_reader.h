@@ -10,7 +10,7 @@
 #include <opencv2/core.hpp>
 #include <string>
 
-#include "rawlog_io/rawlog_writer.h"
+#include "common/sensor_types.h"
 
 namespace rpvio {
 

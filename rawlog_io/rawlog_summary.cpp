@@ -1,6 +1,6 @@
 #include "rawlog_io/rawlog_summary.h"
 
-#include "rawlog_io/input_error.h"
+#include "common/input_error.h"
 #include "rawlog_io/rawlog_labels.h"
 #include "rawlog_io/rawlog_reader.h"
 

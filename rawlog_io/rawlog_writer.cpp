@@ -11,7 +11,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <stdexcept>
 
-#include "rawlog_io/atomic_file.h"
+#include "common/atomic_file.h"
 #include "rawlog_io/mrpt_conversions.h"
 #include "rawlog_io/rawlog_labels.h"
 #include "rawlog_io/rawlog_reader.h"

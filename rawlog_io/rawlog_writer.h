@@ -7,16 +7,9 @@
 #include <opencv2/core.hpp>
 #include <string>
 
-#include "rawlog_io/calibration.h"
-#include "rawlog_io/trajectory_io.h"
+#include "common/sensor_types.h"
 
 namespace rpvio {
-
-struct ImuSample {
-  double t = 0;                                     // seconds
-  Eigen::Vector3d gyro = Eigen::Vector3d::Zero();   // rad/s, body frame
-  Eigen::Vector3d accel = Eigen::Vector3d::Zero();  // specific force, m/s^2, body frame
-};
 
 class RawlogWriter {
  public:

@@ -6,9 +6,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "rawlog_io/atomic_file.h"
-#include "rawlog_io/input_error.h"
-#include "rawlog_io/text_table.h"
+#include "common/atomic_file.h"
+#include "common/input_error.h"
+#include "common/text_table.h"
 
 namespace rpvio {
 namespace {

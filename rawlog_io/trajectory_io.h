@@ -2,18 +2,11 @@
 // Trajectory files: TUM (`t tx ty tz qx qy qz qw`) read/write, KITTI (3x4 row-major, no stamps)
 // read, EuRoC ground-truth CSV (`#timestamp [ns], p_RS_R_x..z, q_RS_w..z, ...`) read.
 // Readers throw InputError naming the file and the line on malformed content.
-#include <Eigen/Geometry>
 #include <string>
-#include <vector>
+
+#include "common/sensor_types.h"
 
 namespace rpvio {
-
-struct StampedPose {
-  double t = 0;  // seconds; KITTI poses get their index as stamp
-  Eigen::Vector3d p = Eigen::Vector3d::Zero();
-  Eigen::Quaterniond q = Eigen::Quaterniond::Identity();
-};
-using Trajectory = std::vector<StampedPose>;
 
 enum class TrajectoryFormat { Tum, Kitti, EurocCsv };
 

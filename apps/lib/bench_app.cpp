@@ -15,14 +15,14 @@
 #include <sstream>
 #include <thread>
 
-#include "apps/evaluation/trajectory_metrics.h"
-#include "apps/evaluation/trajectory_plot.h"
 #include "apps/lib/bench_results.h"
 #include "apps/lib/command_line.h"
-#include "apps/lib/json_text.h"
 #include "apps/lib/subprocess.h"
-#include "rawlog_io/atomic_file.h"
-#include "rawlog_io/input_error.h"
+#include "common/atomic_file.h"
+#include "common/input_error.h"
+#include "common/json_text.h"
+#include "evaluation/trajectory_metrics.h"
+#include "evaluation/trajectory_plot.h"
 #include "rawlog_io/trajectory_io.h"
 
 namespace fs = std::filesystem;

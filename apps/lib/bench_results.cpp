@@ -5,8 +5,8 @@
 #include <functional>
 #include <sstream>
 
-#include "apps/evaluation/error_stats.h"
-#include "apps/lib/json_text.h"
+#include "common/json_text.h"
+#include "evaluation/error_stats.h"
 
 namespace rpvio::apps {
 namespace {

@@ -5,7 +5,7 @@
 #include <iostream>
 #include <limits>
 
-#include "rawlog_io/input_error.h"
+#include "common/input_error.h"
 
 namespace rpvio::apps {
 

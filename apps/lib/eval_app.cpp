@@ -7,12 +7,15 @@
 #include <sstream>
 #include <utility>
 
-#include "apps/evaluation/trajectory_plot.h"
 #include "apps/lib/command_line.h"
-#include "apps/lib/json_text.h"
+#include "common/atomic_file.h"
+#include "common/input_error.h"
+#include "common/json_text.h"
+#include "evaluation/trajectory_plot.h"
 #include "planes_map/plane_map_exporters.h"
-#include "rawlog_io/atomic_file.h"
-#include "rawlog_io/input_error.h"
+#include "rawlog_io/rawlog_labels.h"
+#include "rawlog_io/rawlog_reader.h"
+#include "rawlog_io/trajectory_io.h"
 
 namespace rpvio::apps {
 namespace {
@@ -22,7 +25,7 @@ const char* kUsage =
     "                  [--align se3|sim3|posyaw|none] [--max-dt SEC] [--format tum|kitti|euroc]\n"
     "                  [--rpe-distance M] [--rpe-frames N] [--plot OUT.png] [--json OUT.json]\n"
     "                  [--planes planes.yaml --gt-planes groundtruth_planes.yaml\n"
-    "                   [--rawlog seq.rawlog]]\n"
+    "                   [--rawlog seq.rawlog [--config config/<mode>.ini]]]\n"
     "  Formats are recognized from the content unless --format is given. KITTI files associate by\n"
     "  index, others by nearest timestamp within --max-dt (default 0.01 s). Default alignment "
     "se3.\n"
@@ -30,8 +33,10 @@ const char* kUsage =
     "  and moved by that estimate's alignment: map entries per true plane, normal and offset\n"
     "  errors, and the standard deviations the map's covariance gives them. --rawlog: the\n"
     "  sequence's plane masks; the true planes without a map entry that were trackable for more\n"
-    "  than 2 s (4410 px with no other label within the tracker's 10 px margin: room for 10\n"
-    "  tracks 21 px apart) are listed as missing, those only seen (4410 px) as untrackable.\n";
+    "  than 2 s (10 KLT windows of pixels with no other label within the tracker's margin: room\n"
+    "  for 10 tracks one window apart) are listed as missing, those only seen (10 KLT windows of\n"
+    "  pixels) as untrackable. The KLT window and margin are the front-end's of the run's mode\n"
+    "  (--config: klt_window, window_margin of [FeatureTrackerModule]; default 21 and 10 px).\n";
 
 Trajectory readWithFormat(const std::string& path, const std::string& format) {
   if (format.empty()) return readTrajectory(path);
@@ -39,6 +44,21 @@ Trajectory readWithFormat(const std::string& path, const std::string& format) {
   if (format == "kitti") return readKitti(path);
   if (format == "euroc") return readEurocCsv(path);
   throw UsageError("unknown --format '" + format + "' (tum, kitti, euroc)");
+}
+
+/// Every PLANE_MASK of `rawlog` (InputError naming the file and entry on bad input) into a
+/// PlaneVisibility with the tracker's KLT window and margin.
+std::map<int, eval::LabelVisibility> planeVisibleSeconds(const EvalAppOptions& opt) {
+  RawlogReader reader(opt.masks_rawlog);
+  eval::PlaneVisibility visibility(eval::minVisiblePlanePixels(opt.tracker_klt_window),
+                                   opt.tracker_window_margin);
+  while (const auto obs = reader.next()) {
+    if (obs->sensorLabel != labels::kPlaneMask) continue;
+    const auto* image = dynamic_cast<const mrpt::obs::CObservationImage*>(obs.get());
+    if (!image) continue;
+    visibility.addMask(toSeconds(obs->timestamp), loadGrayImage(*image, reader));
+  }
+  return visibility.seconds();
 }
 
 std::string statsJson(const eval::ErrorStats& s) {
@@ -183,7 +203,7 @@ EvalAppResult runEvaluation(const EvalAppOptions& opt) {
     res.plane_map = eval::evaluatePlaneMap(readPlanesYaml(opt.planes_file), truth,
                                            res.results.front().alignment);
     if (!opt.masks_rawlog.empty()) {
-      res.visible_s = eval::planeVisibleSeconds(opt.masks_rawlog);
+      res.visible_s = planeVisibleSeconds(opt);
       res.missing_planes = eval::missingPlanes(*res.plane_map, truth, *res.visible_s);
     }
   }
@@ -230,7 +250,7 @@ int evalMain(int argc, char** argv) {
   return runApp("rpvio-eval", kUsage, [&] {
     const CommandLine cli(argc, argv,
                           {"gt", "est", "label", "align", "max-dt", "format", "plot", "json",
-                           "rpe-distance", "rpe-frames", "planes", "gt-planes", "rawlog"},
+                           "rpe-distance", "rpe-frames", "planes", "gt-planes", "rawlog", "config"},
                           {});
     EvalAppOptions opt;
     opt.gt_file = cli.value("gt");
@@ -255,6 +275,12 @@ int evalMain(int argc, char** argv) {
     opt.masks_rawlog = cli.valueOr("rawlog", "");
     if (!opt.masks_rawlog.empty() && opt.planes_file.empty())
       throw UsageError("--rawlog needs --planes and --gt-planes");
+    if (cli.has("config")) {
+      const TrackerOptions tracker =
+          TrackerOptions::load(IniFile(cli.value("config")), "FeatureTrackerModule");
+      opt.tracker_klt_window = tracker.klt_window;
+      opt.tracker_window_margin = tracker.window_margin;
+    }
     const EvalAppResult res = runEvaluation(opt);
     std::cout << formatEvaluationReport(opt, res);
     if (!opt.plot_png.empty()) std::cout << "plot: " << opt.plot_png << "\n";

@@ -5,9 +5,10 @@
 #include <string>
 #include <vector>
 
-#include "apps/evaluation/plane_map_accuracy.h"
-#include "apps/evaluation/plane_visibility.h"
-#include "apps/evaluation/trajectory_metrics.h"
+#include "evaluation/plane_map_accuracy.h"
+#include "evaluation/plane_visibility.h"
+#include "evaluation/trajectory_metrics.h"
+#include "mrpt_modules/frontend/feature_tracker.h"
 
 namespace rpvio::apps {
 
@@ -23,6 +24,9 @@ struct EvalAppOptions {
   // The sequence's rawlog: its plane masks say which true planes were seen and trackable for more
   // than 2 s (eval::PlaneVisibility), and the report names those without a map entry.
   std::string masks_rawlog;
+  // ... trackable by the front-end of the run's mode: its KLT window and margin (px).
+  int tracker_klt_window = TrackerOptions{}.klt_window;
+  int tracker_window_margin = TrackerOptions{}.window_margin;
 };
 
 struct EvalAppResult {

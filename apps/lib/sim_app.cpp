@@ -9,8 +9,8 @@
 
 #include "apps/lib/command_line.h"
 #include "planes_map/plane_map_exporters.h"
-#include "rawlog_io/sim/sequence_writer.h"
-#include "rawlog_io/sim/simulator.h"
+#include "sim/sequence_writer.h"
+#include "sim/simulator.h"
 
 namespace fs = std::filesystem;
 

@@ -2,10 +2,10 @@
 #include <vector>
 
 #include "planes_map/plane.h"
-#include "rawlog_io/sim/warehouse_scene.h"
+#include "sim/warehouse_scene.h"
 
 namespace rpvio::apps {
-/// rpvio-sim: renders simulated warehouse sequences (see rawlog_io/sim/).
+/// rpvio-sim: renders simulated warehouse sequences (see sim/).
 int simMain(int argc, char** argv);
 
 /// The scene's static planes as a plane map (id and mask label = the plane's mask label, polygon

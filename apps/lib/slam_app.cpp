@@ -8,18 +8,20 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <opencv2/core/utility.hpp>
 
 #include "apps/lib/command_line.h"
-#include "apps/lib/json_text.h"
+#include "common/atomic_file.h"
+#include "common/input_error.h"
+#include "common/json_text.h"
 #include "mrpt_modules/core/pipeline.h"
 #include "mrpt_modules/estimator/estimator_module.h"
 #include "mrpt_modules/frontend/feature_tracker_module.h"
 #include "planes_map/plane_map_exporters.h"
-#include "rawlog_io/atomic_file.h"
-#include "rawlog_io/input_error.h"
+#include "rawlog_io/calibration.h"
 #include "rawlog_io/rawlog_labels.h"
 #include "rawlog_io/trajectory_io.h"
 
@@ -45,8 +47,10 @@ const char* kUsage =
     "                    input_error says where, the outputs hold the frames before it),\n"
     "                    map_planes (confirmed, exported), tentative_planes (seen too few times),\n"
     "                    refinement (the batch refinement's summary, \"\" if it did not run),\n"
-    "                    refinement_s (its time, in wall_s but not in real_time_factor)\n"
+    "                    refinement_s (its time, in wall_s but not in real_time_factor),\n"
+    "                    status (the estimator's last status, e.g. why it never initialized)\n"
     "    planes.{yaml,ply,bt,3Dscene}, planes_topview.png  the plane map\n"
+    "    config_used.ini the configuration in effect: every module's options, all keys\n"
     "  --threads N  OpenCV threads (default 1: the whole pipeline on one core, the setting of the\n"
     "               published timings; the benchmark runs sequences in parallel instead)\n";
 
@@ -90,6 +94,27 @@ struct FrameRow {
   double t = 0, total_ms = 0, load_ms = 0, estimator_ms = 0;
 };
 
+/// `out` as a folder the outputs can be written to (created if needed); InputError otherwise.
+void requireOutputFolder(const std::string& out) {
+  std::error_code ec;
+  if (fs::exists(out, ec) && !fs::is_directory(out, ec))
+    throw InputError(out, "", "--out must be a folder, not a file");
+  fs::create_directories(out, ec);
+  if (ec) throw InputError(out, "", "cannot create the output folder: " + ec.message());
+  const fs::path probe = fs::path(out) / ".rpvio-write-test";
+  if (!std::ofstream(probe)) throw InputError(out, "", "cannot write in the output folder");
+  fs::remove(probe, ec);
+}
+
+/// Why a rawlog without `label` cannot be played through this config.
+std::string missingSensorReason(const std::string& label) {
+  if (label == labels::kPlaneMask)
+    return "no PLANE_MASK observation (plane masks) in its first 10 s, which this mode needs "
+           "(use_masks = true); without masks, run the vins-mono mode (config/vins-mono.ini)";
+  return "no " + label + " observation in its first 10 s; every mode needs " +
+         (label == labels::kImu ? "the IMU" : "the camera images");
+}
+
 }  // namespace
 
 int slamMain(int argc, char** argv) {
@@ -99,9 +124,8 @@ int slamMain(int argc, char** argv) {
     cv::setNumThreads(cli.count("threads", 1));
     registerFrontendModules();
     registerEstimatorModules();
-    Pipeline pipeline(cli.value("config"), Calibration::load(cli.value("calib")));
-    if (cli.has("quiet"))
-      for (const auto& m : pipeline.modules()) m->setMinLoggingLevel(mrpt::system::LVL_WARN);
+    Pipeline pipeline(cli.value("config"), loadCalibration(cli.value("calib")),
+                      cli.has("quiet") ? mrpt::system::LVL_WARN : mrpt::system::LVL_INFO);
     Trajectory trajectory;
     pipeline.context().bus.subscribe<StateEstimate>(
         [&](const StateEstimate& s) { trajectory.push_back(stampedPose(s)); });
@@ -139,6 +163,10 @@ int slamMain(int argc, char** argv) {
     });
     // Bad input part-way (a truncated rawlog, a missing image, ...): the frames before it are
     // kept, written like a complete run's, then the error is reported and the exit code is 2.
+    const auto missing = pipeline.missingSensors(cli.value("rawlog"));
+    if (!missing.empty())
+      throw InputError(cli.value("rawlog"), "", missingSensorReason(missing.front()));
+    requireOutputFolder(out);
     std::exception_ptr input_error;
     std::string input_error_text;
     try {
@@ -151,85 +179,102 @@ int slamMain(int argc, char** argv) {
     if (terminal) std::fprintf(stderr, "\n");
     const double wall = std::chrono::duration<double>(Clock::now() - start).count();
 
-    fs::create_directories(out);
-    const auto path = [&](const char* name) { return (fs::path(out) / name).string(); };
-    writeTum(path("trajectory.tum"), trajectory);
-    Trajectory refined;
-    if (estimator)
-      for (const auto& s : estimator->estimator().refinedTrajectory())
-        refined.push_back(stampedPose(s));
-    if (!refined.empty()) writeTum(path("trajectory_refined.tum"), refined);
-    std::vector<double> total_ms, optimization_ms, frontend_ms, load_ms, processing_ms;
-    writeFileAtomically(path("stats.csv"), [&](std::ostream& s) {
-      s << "t,load_ms,frontend_ms,optimization_ms,total_ms,features,planes,state\n";
-      s << std::fixed;
-      for (size_t k = 0; k < rows.size(); ++k) {
-        const FrameReport report = estimator && k < estimator->timings().size()
-                                       ? estimator->timings()[k].report
-                                       : FrameReport{"no estimator"};
-        total_ms.push_back(rows[k].total_ms);
-        load_ms.push_back(rows[k].load_ms);
-        processing_ms.push_back(std::max(0.0, rows[k].total_ms - rows[k].load_ms));
-        optimization_ms.push_back(report.optimization_ms);
-        frontend_ms.push_back(std::max(0.0, processing_ms.back() - rows[k].estimator_ms));
-        s << std::setprecision(6) << rows[k].t << std::setprecision(3) << "," << load_ms.back()
-          << "," << frontend_ms.back() << "," << rows[k].estimator_ms << "," << total_ms.back()
-          << "," << report.features << "," << report.planes << "," << report.state << "\n";
-      }
-    });
-    const double sequence_s = rows.size() < 2 ? 0 : rows.back().t - rows.front().t;
-    const double refinement_s = estimator ? estimator->estimator().refinementSeconds() : 0;
-    const double odometry_wall = wall - refinement_s;  // the refinement runs after the rawlog
-    const std::vector<Plane> planes =
-        estimator ? estimator->estimator().planesMap().confirmedPlanes() : std::vector<Plane>{};
-    const size_t tentative_planes =
-        estimator ? estimator->estimator().planesMap().planes().size() - planes.size() : 0;
-    writeFileAtomically(path("summary.json"), [&](std::ostream& s) {
-      s << "{\n  \"complete\": " << (input_error ? "false" : "true")
-        << ",\n  \"input_error\": " << jsonString(input_error_text)
-        << ",\n  \"frames\": " << rows.size() << ",\n  \"poses\": " << trajectory.size()
-        << ",\n  \"initialized_at\": " << (estimator ? estimator->initializedAt() : -1)
-        << ",\n  \"time_offset_s\": " << (estimator ? estimator->estimator().timeOffset() : 0)
-        << ",\n  \"time_offset_note\": "
-        << jsonString(estimator ? estimator->estimator().timeOffsetNote() : "");
-      s << ",\n  \"resets\": " << (estimator ? estimator->estimator().resets() : 0)
-        << ",\n  \"reset_causes\": [";
+    const std::string status = estimator ? estimator->estimator().statusDetail() : "no estimator";
+    // A write failing (disk full, the folder removed meanwhile) is bad output: one line, exit 2;
+    // every file is written whole or not at all.
+    try {
+      const auto path = [&](const char* name) { return (fs::path(out) / name).string(); };
+      writeFileAtomically(path("config_used.ini"),
+                          [&](std::ostream& s) { s << pipeline.effectiveConfig(); });
+      writeTum(path("trajectory.tum"), trajectory);
+      Trajectory refined;
+      if (estimator)
+        for (const auto& s : estimator->estimator().refinedTrajectory())
+          refined.push_back(stampedPose(s));
+      if (!refined.empty()) writeTum(path("trajectory_refined.tum"), refined);
+      std::vector<double> total_ms, optimization_ms, frontend_ms, load_ms, processing_ms;
+      writeFileAtomically(path("stats.csv"), [&](std::ostream& s) {
+        s << "t,load_ms,frontend_ms,optimization_ms,total_ms,features,planes,state\n";
+        s << std::fixed;
+        for (size_t k = 0; k < rows.size(); ++k) {
+          const FrameReport report = estimator && k < estimator->timings().size()
+                                         ? estimator->timings()[k].report
+                                         : FrameReport{"no estimator"};
+          total_ms.push_back(rows[k].total_ms);
+          load_ms.push_back(rows[k].load_ms);
+          processing_ms.push_back(std::max(0.0, rows[k].total_ms - rows[k].load_ms));
+          optimization_ms.push_back(report.optimization_ms);
+          frontend_ms.push_back(std::max(0.0, processing_ms.back() - rows[k].estimator_ms));
+          s << std::setprecision(6) << rows[k].t << std::setprecision(3) << "," << load_ms.back()
+            << "," << frontend_ms.back() << "," << rows[k].estimator_ms << "," << total_ms.back()
+            << "," << report.features << "," << report.planes << "," << report.state << "\n";
+        }
+      });
+      const double sequence_s = rows.size() < 2 ? 0 : rows.back().t - rows.front().t;
+      const double refinement_s = estimator ? estimator->estimator().refinementSeconds() : 0;
+      const double odometry_wall = wall - refinement_s;  // the refinement runs after the rawlog
+      const std::vector<Plane> planes =
+          estimator ? estimator->estimator().planesMap().confirmedPlanes() : std::vector<Plane>{};
+      const size_t tentative_planes =
+          estimator ? estimator->estimator().planesMap().planes().size() - planes.size() : 0;
+      writeFileAtomically(path("summary.json"), [&](std::ostream& s) {
+        s << "{\n  \"complete\": " << (input_error ? "false" : "true")
+          << ",\n  \"input_error\": " << jsonString(input_error_text)
+          << ",\n  \"frames\": " << rows.size() << ",\n  \"poses\": " << trajectory.size()
+          << ",\n  \"initialized_at\": " << (estimator ? estimator->initializedAt() : -1)
+          << ",\n  \"time_offset_s\": " << (estimator ? estimator->estimator().timeOffset() : 0)
+          << ",\n  \"time_offset_note\": "
+          << jsonString(estimator ? estimator->estimator().timeOffsetNote() : "");
+        s << ",\n  \"resets\": " << (estimator ? estimator->estimator().resets() : 0)
+          << ",\n  \"reset_causes\": [";
+        if (estimator) {
+          const auto& log = estimator->estimator().resetLog();
+          for (size_t k = 0; k < log.size(); ++k)
+            s << (k ? ", " : "") << "{\"t\": " << log[k].t
+              << ", \"cause\": " << jsonString(log[k].cause) << "}";
+        }
+        s << "],\n  \"total_ms_median\": " << percentile(total_ms, 0.5)
+          << ",\n  \"total_ms_p95\": " << percentile(total_ms, 0.95)
+          << ",\n  \"load_ms_median\": " << percentile(load_ms, 0.5)
+          << ",\n  \"processing_ms_median\": " << percentile(processing_ms, 0.5)
+          << ",\n  \"processing_ms_p95\": " << percentile(processing_ms, 0.95)
+          << ",\n  \"frontend_ms_median\": " << percentile(frontend_ms, 0.5)
+          << ",\n  \"frontend_ms_p95\": " << percentile(frontend_ms, 0.95)
+          << ",\n  \"optimization_ms_median\": " << percentile(optimization_ms, 0.5)
+          << ",\n  \"optimization_ms_p95\": " << percentile(optimization_ms, 0.95)
+          << ",\n  \"wall_s\": " << wall << ",\n  \"sequence_s\": " << sequence_s
+          << ",\n  \"real_time_factor\": " << (odometry_wall > 0 ? sequence_s / odometry_wall : 0)
+          << ",\n  \"peak_memory_mb\": " << peakMemoryMb()
+          << ",\n  \"map_planes\": " << planes.size()
+          << ",\n  \"tentative_planes\": " << tentative_planes
+          << ",\n  \"refinement_s\": " << refinement_s << ",\n  \"refinement\": "
+          << jsonString(estimator ? estimator->estimator().refinementReport() : "")
+          << ",\n  \"status\": " << jsonString(status) << "\n}\n";
+      });
       if (estimator) {
-        const auto& log = estimator->estimator().resetLog();
-        for (size_t k = 0; k < log.size(); ++k)
-          s << (k ? ", " : "") << "{\"t\": " << log[k].t
-            << ", \"cause\": " << jsonString(log[k].cause) << "}";
+        writePlanesYaml(path("planes.yaml"), planes);
+        writePlanesPly(path("planes.ply"), planes);
+        writePlanesOctomap(path("planes.bt"), planes, kOctomapResolution);
+        writePlanesScene(path("planes.3Dscene"), planes);
+        // The planes are the refinement's when it ran: drawn with its trajectory.
+        writePlanesTopView(path("planes_topview.png"), planes,
+                           refined.empty() ? trajectory : refined);
       }
-      s << "],\n  \"total_ms_median\": " << percentile(total_ms, 0.5)
-        << ",\n  \"total_ms_p95\": " << percentile(total_ms, 0.95)
-        << ",\n  \"load_ms_median\": " << percentile(load_ms, 0.5)
-        << ",\n  \"processing_ms_median\": " << percentile(processing_ms, 0.5)
-        << ",\n  \"processing_ms_p95\": " << percentile(processing_ms, 0.95)
-        << ",\n  \"frontend_ms_median\": " << percentile(frontend_ms, 0.5)
-        << ",\n  \"frontend_ms_p95\": " << percentile(frontend_ms, 0.95)
-        << ",\n  \"optimization_ms_median\": " << percentile(optimization_ms, 0.5)
-        << ",\n  \"optimization_ms_p95\": " << percentile(optimization_ms, 0.95)
-        << ",\n  \"wall_s\": " << wall << ",\n  \"sequence_s\": " << sequence_s
-        << ",\n  \"real_time_factor\": " << (odometry_wall > 0 ? sequence_s / odometry_wall : 0)
-        << ",\n  \"peak_memory_mb\": " << peakMemoryMb() << ",\n  \"map_planes\": " << planes.size()
-        << ",\n  \"tentative_planes\": " << tentative_planes
-        << ",\n  \"refinement_s\": " << refinement_s << ",\n  \"refinement\": "
-        << jsonString(estimator ? estimator->estimator().refinementReport() : "") << "\n}\n";
-    });
-    if (estimator) {
-      writePlanesYaml(path("planes.yaml"), planes);
-      writePlanesPly(path("planes.ply"), planes);
-      writePlanesOctomap(path("planes.bt"), planes, kOctomapResolution);
-      writePlanesScene(path("planes.3Dscene"), planes);
-      // The planes are the refinement's when it ran: drawn with its trajectory.
-      writePlanesTopView(path("planes_topview.png"), planes,
-                         refined.empty() ? trajectory : refined);
+    } catch (const InputError&) {
+      throw;
+    } catch (const std::runtime_error& e) {
+      throw InputError(out, "", std::string("writing the outputs failed: ") + e.what());
     }
     std::printf("%zu frames, %zu poses, %zu resets, wall %.1f s; outputs in %s%s\n", rows.size(),
                 trajectory.size(), estimator ? estimator->estimator().resets() : 0, wall,
                 out.c_str(), input_error ? " (the frames before the error below)" : "");
+    if (trajectory.empty())
+      std::printf("no pose: never initialized (last status: %s)\n", status.c_str());
     std::fflush(stdout);
     if (input_error) std::rethrow_exception(input_error);
+    if (rows.empty())
+      throw InputError(cli.value("rawlog"), "",
+                       "no frame was processed (last status: " + status + ")");
     return 0;
   });
 }

@@ -19,4 +19,9 @@ struct FeatureFrame {
   std::vector<TrackedFeature> features;
 };
 
+/// Mean displacement (px at `virtual_focal`) of the features common to two frames; 0 when none.
+double averageParallax(const FeatureFrame& a, const FeatureFrame& b, double virtual_focal = 460);
+/// Number of features common to two frames.
+size_t commonFeatures(const FeatureFrame& a, const FeatureFrame& b);
+
 }  // namespace rpvio

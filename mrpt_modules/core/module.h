@@ -5,10 +5,11 @@
 #include <mrpt/rtti/CObject.h>
 #include <mrpt/system/COutputLogger.h>
 #include <string>
+#include <utility>
 
+#include "common/ini_file.h"
+#include "common/sensor_types.h"
 #include "mrpt_modules/core/bus.h"
-#include "rawlog_io/calibration.h"
-#include "rawlog_io/ini_file.h"
 
 namespace rpvio {
 
@@ -28,6 +29,19 @@ class Module : public mrpt::rtti::CObject, public mrpt::system::COutputLogger {
                           PipelineContext& context) = 0;
   /// Called once after the last observation (flush, final outputs).
   virtual void finish() {}
+  /// The options the module runs with, as INI text with its section header(s): every key, loaded
+  /// or default (rpvio-slam writes them to OUT/config_used.ini).
+  const std::string& optionsText() const { return options_text_; }
+
+ protected:
+  /// Records the module's effective options (`[section]` + describeOptions) and logs them.
+  void setOptionsText(std::string text) {
+    options_text_ = std::move(text);
+    MRPT_LOG_INFO_STREAM("options:\n" << options_text_);
+  }
+
+ private:
+  std::string options_text_;
 };
 
 }  // namespace rpvio

@@ -12,14 +12,23 @@ namespace rpvio {
 
 class Pipeline {
  public:
-  /// Throws InputError naming the config file for an unknown module or a bad option.
-  Pipeline(const std::string& config_path, const Calibration& calibration);
+  /// Throws InputError naming the config file (and line) for an unknown module, a bad option or
+  /// a key no module reads. Modules log at `verbosity` and above.
+  Pipeline(const std::string& config_path, const Calibration& calibration,
+           mrpt::system::VerbosityLevel verbosity = mrpt::system::LVL_INFO);
 
   /// Streams the rawlog through the bus; `on_entry(entries_read)` after each observation.
   /// Throws InputError on bad rawlog content (naming file and entry).
   void play(const std::string& rawlog_path, const std::function<void(size_t)>& on_entry = {});
 
+  /// The sensor labels the modules consume that the rawlog has no observation of in its first
+  /// `seconds` (a quick scan; bad input met there ends the scan, play() reports it).
+  std::vector<std::string> missingSensors(const std::string& rawlog_path,
+                                          double seconds = 10) const;
+
   PipelineContext& context() { return context_; }
+  /// The configuration in effect: [Pipeline] and every module's options, all keys (INI text).
+  std::string effectiveConfig() const;
   const std::vector<std::shared_ptr<Module>>& modules() const { return modules_; }
   /// The module of the given class, or nullptr.
   template <typename M>

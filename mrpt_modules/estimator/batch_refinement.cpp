@@ -7,10 +7,10 @@
 #include <algorithm>
 #include <sstream>
 
-#include "mrpt_modules/core/parameter_blocks.h"
 #include "mrpt_modules/estimator/estimator_problem.h"
 #include "mrpt_modules/factors/homography_factor.h"
 #include "mrpt_modules/factors/imu_factor.h"
+#include "mrpt_modules/factors/parameter_blocks.h"
 #include "mrpt_modules/factors/pose_manifold.h"
 #include "mrpt_modules/factors/reprojection_factor.h"
 

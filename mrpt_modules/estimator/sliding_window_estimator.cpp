@@ -6,12 +6,12 @@
 #include <chrono>
 #include <cmath>
 
-#include "mrpt_modules/core/parameter_blocks.h"
 #include "mrpt_modules/estimator/batch_refinement.h"
 #include "mrpt_modules/estimator/estimator_problem.h"
 #include "mrpt_modules/factors/homography_factor.h"
 #include "mrpt_modules/factors/imu_factor.h"
 #include "mrpt_modules/factors/marginal_covariance.h"
+#include "mrpt_modules/factors/parameter_blocks.h"
 #include "mrpt_modules/factors/pose_manifold.h"
 #include "mrpt_modules/factors/reprojection_factor.h"
 #include "mrpt_modules/frontend/feature_tracker.h"
@@ -40,22 +40,37 @@ void appendSamples(std::vector<ImuSample>& to, const std::vector<ImuSample>& fro
 
 }  // namespace
 
+void EstimatorOptions::validate(const OptionsLoader& loader) const {
+  loader.require(window_size >= 3, "window_size", "must be at least 3");
+  loader.require(max_iterations >= 0, "max_iterations", "must be 0 or more");
+}
+
+InitializerOptions EstimatorOptions::initializerOptions() const {
+  InitializerOptions o;
+  o.method = initializer;
+  o.min_window_s = init_window_s;
+  o.min_parallax_px = init_parallax_px;
+  o.virtual_focal = virtual_focal;
+  o.pixel_sigma = pixel_sigma;
+  return o;
+}
+
 SlidingWindowEstimator::SlidingWindowEstimator(const Calibration& calibration,
                                                const EstimatorOptions& options)
     : calib_(calibration),
       options_(options),
-      initializer_(calibration, options.init),
+      initializer_(calibration, options.initializerOptions()),
       fallback_initializer_(calibration,
                             [&] {
-                              InitializerOptions o = options.init;
+                              InitializerOptions o = options.initializerOptions();
                               o.method = InitializerMethod::kEssentialMatrix;
                               return o;
                             }()),
       reinitializer_(calibration,
                      [&] {
-                       InitializerOptions o = options.init;
-                       o.max_relative_scale_sigma = options.reinit_max_relative_scale_sigma;
-                       o.method = options.reinit_method;
+                       InitializerOptions o = options.initializerOptions();
+                       o.max_relative_scale_sigma = options.reinit_max_scale_sigma;
+                       o.method = options.reinitializer;
                        return o;
                      }()),
       planes_map_(options.planes_map) {
@@ -611,7 +626,7 @@ void SlidingWindowEstimator::tryInitialize() {
   InitializationResult init =
       (last_good_ ? reinitializer_ : initializer_).tryInitialize(frames, imu);
   if (!last_good_ && init.status == InitStatus::kGeometryFailed && options_.init_fallback &&
-      options_.init.method != InitializerMethod::kEssentialMatrix) {
+      options_.initializer != InitializerMethod::kEssentialMatrix) {
     if (first_geometry_failure_t_ < 0) first_geometry_failure_t_ = frames.back().t;
     if (frames.back().t - first_geometry_failure_t_ >= options_.init_fallback_after_s)
       init = fallback_initializer_.tryInitialize(frames, imu);

@@ -28,17 +28,25 @@
 #include <string>
 #include <vector>
 
+#include "common/options.h"
+#include "common/sensor_types.h"
 #include "mrpt_modules/estimator/batch_refinement.h"
 #include "mrpt_modules/estimator/estimator_types.h"
 #include "mrpt_modules/estimator/feature_manager.h"
 #include "mrpt_modules/factors/marginalization.h"
 #include "mrpt_modules/initialization/initializer.h"
 #include "planes_map/planes_map.h"
-#include "rawlog_io/rawlog_writer.h"
 
 namespace rpvio {
 
 enum class HomographyPlanes { kNone, kLargest, kAll };
+inline const OptionNames<HomographyPlanes> kHomographyPlanesNames = {
+    {"none", HomographyPlanes::kNone},
+    {"largest", HomographyPlanes::kLargest},
+    {"all", HomographyPlanes::kAll}};
+inline const OptionNames<InitializerMethod> kInitializerMethodNames = {
+    {"homography", InitializerMethod::kPlanarHomography},
+    {"essential", InitializerMethod::kEssentialMatrix}};
 
 struct EstimatorOptions {
   size_t window_size = 10;           // keyframes
@@ -74,12 +82,18 @@ struct EstimatorOptions {
   double max_blind_s = 2.5;    // ... not reached for this long (IMU only meanwhile: a 2 s
                                // blackout is bridged at 1.2x the fault-free ATE)
   double virtual_focal = 460;  // px; parallax thresholds and factor weights refer to it
+  // First initialization: the method (homography: RP-VIO's, on the largest plane; essential:
+  // VINS-Mono's 5-point SfM), the window's time span (s: baseline and IMU excitation for the
+  // scale) and the rotation-compensated parallax (px at virtual_focal) it needs.
+  InitializerMethod initializer = InitializerMethod::kPlanarHomography;
+  double init_window_s = 2.0;
+  double init_parallax_px = 30.0;
   // Re-initialization after a reset: mid-flight accelerations make the scale less observable
   // than the take-off, so the alignment's scale may be this uncertain (the window refines it) ...
-  double reinit_max_relative_scale_sigma = 0.10;
+  double reinit_max_scale_sigma = 0.10;
   // ... by this method: the homography initializer's structure fails mid-flight on the simulator
   // (bundle adjustment diverges), the essential-matrix one (on the same, masked features) works.
-  InitializerMethod reinit_method = InitializerMethod::kEssentialMatrix;
+  InitializerMethod reinitializer = InitializerMethod::kEssentialMatrix;
   // When the homography initializer's two-view geometry or structure fails (its bundle adjustment
   // diverges on some windows, e.g. with an unknown 30 ms camera-IMU offset), the same window is
   // tried with the essential-matrix method, same thresholds.
@@ -105,8 +119,50 @@ struct EstimatorOptions {
   // ... skipped (and said so) beyond this many keyframes: its memory grows with them (355 MB peak
   // for the 459 keyframes of an 80 s sequence with rpvio-multi, against 91 MB without).
   size_t batch_refinement_max_keyframes = 2000;
-  InitializerOptions init;
-  PlanesMapOptions planes_map;
+  PlanesMapOptions planes_map;  // its own section, [PlanesMap]
+
+  template <class Visitor>
+  void fields(Visitor& v) {
+    RPVIO_OPTION(v, window_size);
+    RPVIO_OPTION(v, keyframe_parallax_px);
+    RPVIO_OPTION(v, keyframe_min_tracks);
+    RPVIO_OPTION(v, max_keyframe_gap_s);
+    RPVIO_OPTION_CHOICE(v, homography_planes, kHomographyPlanesNames);
+    RPVIO_OPTION(v, pixel_sigma);
+    RPVIO_OPTION(v, cauchy_scale);
+    RPVIO_OPTION(v, imu_noise_inflation);
+    RPVIO_OPTION(v, max_imu_step_s);
+    RPVIO_OPTION(v, imu_gap_noise_inflation);
+    RPVIO_OPTION(v, min_saturated_accel);
+    RPVIO_OPTION(v, min_saturated_gyro);
+    RPVIO_OPTION(v, max_iterations);
+    RPVIO_OPTION(v, max_solver_time_s);
+    RPVIO_OPTION(v, min_triangulation_angle_deg);
+    RPVIO_OPTION(v, max_accel_bias);
+    RPVIO_OPTION(v, max_gyro_bias);
+    RPVIO_OPTION(v, max_jump_m);
+    RPVIO_OPTION(v, max_jump_deg);
+    RPVIO_OPTION(v, min_features);
+    RPVIO_OPTION(v, max_blind_s);
+    RPVIO_OPTION(v, virtual_focal);
+    RPVIO_OPTION_CHOICE(v, initializer, kInitializerMethodNames);
+    RPVIO_OPTION(v, init_window_s);
+    RPVIO_OPTION(v, init_parallax_px);
+    RPVIO_OPTION(v, init_window_frames);
+    RPVIO_OPTION(v, init_fallback);
+    RPVIO_OPTION(v, init_fallback_after_s);
+    RPVIO_OPTION_CHOICE(v, reinitializer, kInitializerMethodNames);
+    RPVIO_OPTION(v, reinit_max_scale_sigma);
+    RPVIO_OPTION(v, max_reconnect_s);
+    RPVIO_OPTION(v, estimate_time_offset);
+    RPVIO_OPTION(v, min_time_offset_s);
+    RPVIO_OPTION(v, max_time_offset_s);
+    RPVIO_OPTION(v, batch_refinement);
+    RPVIO_OPTION(v, batch_refinement_max_keyframes);
+  }
+  void validate(const OptionsLoader& loader) const;
+  /// The first initializer's options (the others are variants of it).
+  InitializerOptions initializerOptions() const;
 };
 
 struct ResetEvent {

@@ -2,7 +2,7 @@
 
 #include <Eigen/Cholesky>
 
-#include "mrpt_modules/core/parameter_blocks.h"
+#include "mrpt_modules/factors/parameter_blocks.h"
 #include "mrpt_modules/factors/pose_manifold.h"
 #include "mrpt_modules/imu/so3.h"
 

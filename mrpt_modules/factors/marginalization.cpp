@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <map>
 
-#include "mrpt_modules/core/parameter_blocks.h"
+#include "mrpt_modules/factors/parameter_blocks.h"
 #include "mrpt_modules/factors/pose_manifold.h"
 #include "mrpt_modules/imu/so3.h"
 

@@ -2,7 +2,7 @@
 
 #include <Eigen/Geometry>
 
-#include "mrpt_modules/core/parameter_blocks.h"
+#include "mrpt_modules/factors/parameter_blocks.h"
 #include "mrpt_modules/imu/so3.h"
 
 namespace rpvio {

@@ -1,5 +1,5 @@
 #pragma once
-// The manifold of a pose block [p, q] (mrpt_modules/core/parameter_blocks.h): p + δp and
+// The manifold of a pose block [p, q] (mrpt_modules/factors/parameter_blocks.h): p + δp and
 // q ⊗ Exp(δθ) (right perturbation, body frame), with its true Plus Jacobian so that autodiff
 // factors (which differentiate w.r.t. the 7 ambient numbers) and analytic factors (which know
 // their tangent-space Jacobian, lifted with tangentToAmbient) can share a pose.

@@ -10,11 +10,11 @@
 #include <optional>
 #include <unordered_map>
 
+#include "common/input_error.h"
 #include "mrpt_modules/frontend/homography_ransac.h"
 #include "mrpt_modules/frontend/point_undistortion.h"
-#include "mrpt_modules/frontend/uniform_plane_region.h"
 #include "mrpt_modules/frontend/warped_template_alignment.h"
-#include "rawlog_io/input_error.h"
+#include "rawlog_io/uniform_plane_region.h"
 
 namespace rpvio {
 namespace {
@@ -37,31 +37,9 @@ std::optional<cv::Matx33d> planeImageMotion(const std::vector<cv::Point2f>& from
 }
 }  // namespace
 
-TrackerOptions TrackerOptions::load(const IniFile& ini, const std::string& s) {
-  TrackerOptions o;
-  o.use_masks = ini.flagOr(s, "use_masks", o.use_masks);
-  o.erosion_kernel = static_cast<int>(ini.numberOr(s, "erosion_kernel", o.erosion_kernel));
-  o.erosion_iterations =
-      static_cast<int>(ini.numberOr(s, "erosion_iterations", o.erosion_iterations));
-  o.window_margin = static_cast<int>(ini.numberOr(s, "window_margin", o.window_margin));
-  o.max_features = static_cast<int>(ini.numberOr(s, "max_features", o.max_features));
-  o.min_distance = ini.numberOr(s, "min_distance", o.min_distance);
-  o.min_plane_features =
-      static_cast<int>(ini.numberOr(s, "min_plane_features", o.min_plane_features));
-  o.klt_window = static_cast<int>(ini.numberOr(s, "klt_window", o.klt_window));
-  o.klt_levels = static_cast<int>(ini.numberOr(s, "klt_levels", o.klt_levels));
-  o.max_forward_backward_px = ini.numberOr(s, "max_forward_backward_px", o.max_forward_backward_px);
-  o.klt_min_eigenvalue = ini.numberOr(s, "klt_min_eigenvalue", o.klt_min_eigenvalue);
-  o.clahe = ini.flagOr(s, "clahe", o.clahe);
-  o.anchor_refinement = ini.flagOr(s, "anchor_refinement", o.anchor_refinement);
-  o.max_warp_scale = ini.numberOr(s, "max_warp_scale", o.max_warp_scale);
-  o.detection_level = static_cast<int>(ini.numberOr(s, "detection_level", o.detection_level));
-  if (o.detection_level < 0 || o.detection_level > 3)
-    throw InputError(ini.path(), "line " + std::to_string(ini.line(s, "detection_level")),
-                     "detection_level must be 0 (full resolution) to 3");
-  o.ransac.threshold_px = ini.numberOr(s, "ransac_threshold_px", o.ransac.threshold_px);
-  o.ransac.virtual_focal = ini.numberOr(s, "virtual_focal", o.ransac.virtual_focal);
-  return o;
+void TrackerOptions::validate(const OptionsLoader& loader) const {
+  loader.require(detection_level >= 0 && detection_level <= 3, "detection_level",
+                 "must be 0 (full resolution) to 3");
 }
 
 FeatureTracker::FeatureTracker(const CameraIntrinsics& camera, const TrackerOptions& options)
@@ -162,15 +140,17 @@ FeatureTracker::PlaneHomographies FeatureTracker::rejectOutliers(std::vector<Tra
   for (const Track& p : tracks_) previous_normalized[p.id] = p.normalized;
   std::vector<bool> keep(tracks.size(), true);
   PlaneHomographies homographies;
+  RansacOptions ransac;
+  ransac.threshold_px = options_.ransac_threshold_px;
+  ransac.virtual_focal = options_.virtual_focal;
   for (const auto& [plane, indices] : groups) {
     std::vector<cv::Point2f> from, to;
     for (size_t i : indices) {
       from.push_back(previous_normalized.at(tracks[i].id));
       to.push_back(tracks[i].normalized);
     }
-    const std::vector<bool> inliers = options_.use_masks
-                                          ? homographyInliers(from, to, options_.ransac)
-                                          : fundamentalInliers(from, to, options_.ransac);
+    const std::vector<bool> inliers = options_.use_masks ? homographyInliers(from, to, ransac)
+                                                         : fundamentalInliers(from, to, ransac);
     std::vector<cv::Point2f> inlier_from, inlier_to;
     for (size_t k = 0; k < indices.size(); ++k) {
       keep[indices[k]] = inliers[k];
@@ -381,28 +361,6 @@ FeatureFrame FeatureTracker::track(double t, const cv::Mat& raw_image, const cv:
   std::swap(previous_pyramid_, pyramid_);
   previous_t_ = t;
   return publish(t, dt);
-}
-
-double averageParallax(const FeatureFrame& a, const FeatureFrame& b, double virtual_focal) {
-  std::unordered_map<int, Eigen::Vector2d> in_a;
-  for (const auto& f : a.features) in_a[f.id] = f.normalized;
-  double sum = 0;
-  size_t n = 0;
-  for (const auto& f : b.features) {
-    const auto it = in_a.find(f.id);
-    if (it == in_a.end()) continue;
-    sum += virtual_focal * (f.normalized - it->second).norm();
-    ++n;
-  }
-  return n ? sum / n : 0.0;
-}
-
-size_t commonFeatures(const FeatureFrame& a, const FeatureFrame& b) {
-  std::unordered_map<int, bool> in_a;
-  for (const auto& f : a.features) in_a[f.id] = true;
-  size_t n = 0;
-  for (const auto& f : b.features) n += in_a.count(f.id);
-  return n;
 }
 
 }  // namespace rpvio

@@ -7,12 +7,12 @@
 #include <string>
 #include <vector>
 
+#include "common/options.h"
+#include "common/sensor_types.h"
 #include "mrpt_modules/core/feature_frame.h"
 #include "mrpt_modules/frontend/corner_detector.h"
 #include "mrpt_modules/frontend/outlier_rejection.h"
 #include "mrpt_modules/frontend/plane_feature_budget.h"
-#include "rawlog_io/calibration.h"
-#include "rawlog_io/ini_file.h"
 
 namespace rpvio {
 
@@ -49,7 +49,10 @@ struct TrackerOptions {
   // scale (README, KLT's threshold). The optimization is ~1.4x slower (longer tracks).
   double klt_min_eigenvalue = 5e-3;
   bool clahe = false;
-  RansacOptions ransac;  // 1 px at the virtual focal length 460
+  // Outlier rejection between consecutive frames: per plane a homography (masks), else a
+  // fundamental matrix, by RANSAC with this threshold (px) at the virtual focal length (px).
+  double ransac_threshold_px = 1.0;
+  double virtual_focal = 460.0;
   // Re-align every track on the image it was born in (frame-to-frame result as initial guess), the
   // birth patch warped by its plane's homographies, so KLT errors do not accumulate along the
   // track.
@@ -58,8 +61,32 @@ struct TrackerOptions {
   // Corners are detected on this pyramid level (0 = full resolution; 1 = half, 4x cheaper).
   int detection_level = 0;
 
+  template <class Visitor>
+  void fields(Visitor& v) {
+    RPVIO_OPTION(v, use_masks);
+    RPVIO_OPTION(v, erosion_kernel);
+    RPVIO_OPTION(v, erosion_iterations);
+    RPVIO_OPTION(v, window_margin);
+    RPVIO_OPTION(v, max_features);
+    RPVIO_OPTION(v, min_distance);
+    RPVIO_OPTION(v, min_plane_features);
+    RPVIO_OPTION(v, klt_window);
+    RPVIO_OPTION(v, klt_levels);
+    RPVIO_OPTION(v, max_forward_backward_px);
+    RPVIO_OPTION(v, klt_min_eigenvalue);
+    RPVIO_OPTION(v, clahe);
+    RPVIO_OPTION(v, ransac_threshold_px);
+    RPVIO_OPTION(v, virtual_focal);
+    RPVIO_OPTION(v, anchor_refinement);
+    RPVIO_OPTION(v, max_warp_scale);
+    RPVIO_OPTION(v, detection_level);
+  }
+  void validate(const OptionsLoader& loader) const;
   /// Reads the keys present in `section` (others keep their defaults).
-  static TrackerOptions load(const IniFile& ini, const std::string& section);
+  static TrackerOptions load(const IniFile& ini, const std::string& section) {
+    return loadOptions<TrackerOptions>(ini, section);
+  }
+  std::string describe() const { return describeOptions(*this); }
 };
 
 class FeatureTracker {
@@ -120,10 +147,5 @@ class FeatureTracker {
   int next_id_ = 0;
   std::vector<std::string> warnings_, warned_;
 };
-
-/// Mean displacement (px at `virtual_focal`) of the features common to two frames; 0 when none.
-double averageParallax(const FeatureFrame& a, const FeatureFrame& b, double virtual_focal = 460);
-/// Number of features common to two frames.
-size_t commonFeatures(const FeatureFrame& a, const FeatureFrame& b);
 
 }  // namespace rpvio

@@ -20,9 +20,7 @@ void FeatureTrackerModule::initialize(const IniFile& config, const std::string& 
   context.bus.subscribeSensor(labels::kCamera, [this](const auto& m) { onImage(m); });
   if (use_masks_)
     context.bus.subscribeSensor(labels::kPlaneMask, [this](const auto& m) { onMask(m); });
-  MRPT_LOG_INFO_STREAM("masks " << (use_masks_ ? "on" : "off") << ", max_features "
-                                << options.max_features << ", min_distance " << options.min_distance
-                                << ", min_plane_features " << options.min_plane_features);
+  setOptionsText("[" + section + "]\n" + options.describe());
 }
 
 cv::Mat FeatureTrackerModule::timedLoad(const ObservationMessage& m) {
@@ -69,7 +67,8 @@ void FeatureTrackerModule::process(double t) {
   const FeatureFrame frame = tracker_->track(t, image->second, mask);
   pending_images_.erase(image);
   pending_masks_.erase(pending_masks_.begin(), pending_masks_.upper_bound(t));
-  for (const auto& w : tracker_->takeWarnings()) MRPT_LOG_WARN_STREAM("t=" << t << " s: " << w);
+  for (const auto& w : tracker_->takeWarnings())
+    MRPT_LOG_WARN_STREAM("t=" << timeText(t) << ": " << w);
   ++frames_published_;
   bus_->publish(frame);
 }

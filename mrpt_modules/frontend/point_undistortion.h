@@ -4,7 +4,7 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
-#include "rawlog_io/calibration.h"
+#include "common/sensor_types.h"
 
 namespace rpvio {
 

@@ -6,7 +6,7 @@
 #include <Eigen/Geometry>
 #include <vector>
 
-#include "rawlog_io/calibration.h"
+#include "common/sensor_types.h"
 
 namespace rpvio {
 

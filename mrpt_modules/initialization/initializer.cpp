@@ -125,8 +125,8 @@ Initializer::Initializer(const Calibration& calibration, const InitializerOption
 InitializationResult Initializer::tryInitialize(const Frames& frames, const Preintegrations& imu) {
   InitializationResult result = attempt(frames, imu);
   if (result.status != last_status_) {
-    MRPT_LOG_INFO_STREAM("t=" << (frames.empty() ? 0.0 : frames.back().t)
-                              << " s: " << result.reason);
+    MRPT_LOG_INFO_STREAM("t=" << timeText(frames.empty() ? 0.0 : frames.back().t) << ": "
+                              << result.reason);
     last_status_ = result.status;
   }
   return result;

@@ -23,9 +23,9 @@
 #include <string>
 #include <vector>
 
+#include "common/sensor_types.h"
 #include "mrpt_modules/core/feature_frame.h"
 #include "mrpt_modules/imu/imu_preintegration.h"
-#include "rawlog_io/calibration.h"
 
 namespace rpvio {
 

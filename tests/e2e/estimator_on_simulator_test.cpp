@@ -4,12 +4,12 @@
 
 #include <algorithm>
 
-#include "apps/evaluation/plane_map_accuracy.h"
-#include "apps/evaluation/trajectory_metrics.h"
 #include "apps/lib/sim_app.h"
+#include "evaluation/plane_map_accuracy.h"
+#include "evaluation/trajectory_metrics.h"
 #include "mrpt_modules/estimator/sliding_window_estimator.h"
 #include "mrpt_modules/frontend/feature_tracker.h"
-#include "rawlog_io/sim/simulator.h"
+#include "sim/simulator.h"
 
 namespace rpvio {
 namespace {

@@ -12,7 +12,7 @@
 
 #include <filesystem>
 
-#include "apps/evaluation/trajectory_metrics.h"
+#include "evaluation/trajectory_metrics.h"
 #include "rawlog_io/trajectory_io.h"
 #include "tests/test_util.h"
 

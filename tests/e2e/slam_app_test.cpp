@@ -3,12 +3,17 @@
 // frames before the truncation.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
-#include "rawlog_io/sim/sequence_writer.h"
+#include "rawlog_io/calibration.h"
+#include "rawlog_io/rawlog_labels.h"
+#include "rawlog_io/rawlog_reader.h"
+#include "rawlog_io/rawlog_writer.h"
 #include "rawlog_io/trajectory_io.h"
+#include "sim/sequence_writer.h"
 #include "tests/test_util.h"
 
 namespace rpvio {
@@ -103,6 +108,109 @@ TEST(SlamApp, TruncatedRawlogKeepsTheFramesBeforeIt) {
   EXPECT_EQ(whole.compare(0, cut.size(), cut), 0);
   EXPECT_TRUE(std::filesystem::exists(dir.file("cut/stats.csv")));
   EXPECT_TRUE(std::filesystem::exists(dir.file("cut/planes.yaml")));
+}
+
+/// A copy of a rawlog without the observations of `label`.
+void copyWithout(const std::string& from, const std::string& to, const std::string& label,
+                 const Calibration& calibration) {
+  RawlogReader reader(from);
+  std::filesystem::create_directories(std::filesystem::path(to).parent_path());
+  RawlogWriter writer(to, calibration);
+  while (const auto obs = reader.next()) {
+    if (obs->sensorLabel == label) continue;
+    const double t = toSeconds(obs->timestamp);
+    if (const auto* image = dynamic_cast<const mrpt::obs::CObservationImage*>(obs.get())) {
+      if (obs->sensorLabel == labels::kCamera)
+        writer.addImage(t, loadGrayImage(*image, reader));
+      else
+        writer.addMask(t, loadGrayImage(*image, reader));
+    } else if (const auto* imu = dynamic_cast<const mrpt::obs::CObservationIMU*>(obs.get())) {
+      writer.addImu(toImuSample(*imu, reader));
+    }
+  }
+  writer.close();
+}
+
+TEST(SlamApp, ARawlogWithoutWhatTheModeNeedsIsBadInputNamingIt) {
+  test::TempDir dir;
+  sim::SimConfig config;
+  config.duration = 1.0;
+  sim::writeSequence(config, dir.file("seq"));
+  const Calibration calibration = loadCalibration(dir.file("seq/calib.ini"));
+  copyWithout(dir.file("seq/seq.rawlog"), dir.file("nomask/seq.rawlog"), labels::kPlaneMask,
+              calibration);
+  copyWithout(dir.file("seq/seq.rawlog"), dir.file("noimu/seq.rawlog"), labels::kImu, calibration);
+  const auto slam = [&](const char* mode, const std::string& rawlog, const std::string& out_dir) {
+    return test::binDir() + "/rpvio-slam --config " + std::string(RPVIO_SOURCE_DIR) + "/config/" +
+           mode + ".ini --calib " + dir.file("seq/calib.ini") + " --rawlog " + rawlog +
+           " --quiet --out " + out_dir;
+  };
+  std::string out;
+  // A masked mode on a rawlog without masks: one line naming the rawlog, the label and the mode
+  // that runs; no output folder.
+  EXPECT_EQ(
+      test::runCommand(slam("rpvio-single", dir.file("nomask/seq.rawlog"), dir.file("o1")), out), 2)
+      << out;
+  EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1) << out;
+  EXPECT_NE(out.find("rpvio-slam: error: " + dir.file("nomask/seq.rawlog") + ": no PLANE_MASK"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("vins-mono"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("o1")));
+  // The unmasked mode runs on it.
+  EXPECT_EQ(test::runCommand(slam("vins-mono", dir.file("nomask/seq.rawlog"), dir.file("o2")), out),
+            0)
+      << out;
+  // Without IMU, no mode runs.
+  EXPECT_EQ(test::runCommand(slam("vins-mono", dir.file("noimu/seq.rawlog"), dir.file("o3")), out),
+            2)
+      << out;
+  EXPECT_NE(out.find(dir.file("noimu/seq.rawlog") + ": no IMU observation"), std::string::npos)
+      << out;
+}
+
+TEST(SlamApp, AnOutputPathThatCannotBeAFolderIsBadInput) {
+  test::TempDir dir;
+  sim::SimConfig config;
+  config.duration = 1.0;
+  sim::writeSequence(config, dir.file("seq"));
+  const std::string slam = test::binDir() + "/rpvio-slam --config " +
+                           std::string(RPVIO_SOURCE_DIR) + "/config/rpvio-single.ini --calib " +
+                           dir.file("seq/calib.ini") + " --rawlog " + dir.file("seq/seq.rawlog") +
+                           " --quiet --out ";
+  std::string out;
+  test::writeText(dir.file("a-file"), "keep me\n");
+  EXPECT_EQ(test::runCommand(slam + dir.file("a-file"), out), 2) << out;
+  EXPECT_EQ(out,
+            "rpvio-slam: error: " + dir.file("a-file") + ": --out must be a folder, not a file\n");
+  EXPECT_EQ(test::readFile(dir.file("a-file")), "keep me\n");
+  EXPECT_EQ(test::runCommand(slam + dir.file("a-file/sub"), out), 2) << out;
+  EXPECT_NE(out.find("cannot create the output folder"), std::string::npos) << out;
+  // Not writable (root may write anywhere on disk: /proc refuses everyone).
+  EXPECT_EQ(test::runCommand(slam + "/proc/rpvio-out", out), 2) << out;
+  EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1) << out;
+  EXPECT_NE(out.find("rpvio-slam: error: /proc/rpvio-out: "), std::string::npos) << out;
+}
+
+TEST(SlamApp, ARunThatNeverInitializesSaysWhy) {
+  test::TempDir dir;
+  sim::SimConfig config;
+  config.duration = 1.0;  // shorter than the 2 s initialization window
+  sim::writeSequence(config, dir.file("seq"));
+  std::string out;
+  ASSERT_EQ(test::runCommand(
+                test::binDir() + "/rpvio-slam --config " + std::string(RPVIO_SOURCE_DIR) +
+                    "/config/rpvio-single.ini --calib " + dir.file("seq/calib.ini") + " --rawlog " +
+                    dir.file("seq/seq.rawlog") + " --quiet --out " + dir.file("o"),
+                out),
+            0)
+      << out;
+  EXPECT_NE(out.find("no pose: never initialized (last status: "), std::string::npos) << out;
+  const std::string summary = test::readFile(dir.file("o/summary.json"));
+  EXPECT_EQ(test::jsonNumber(summary, "poses"), 0) << summary;
+  const auto at = summary.find("\"status\": \"");
+  ASSERT_NE(at, std::string::npos) << summary;
+  EXPECT_NE(summary[at + 11], '"') << summary;  // not empty
 }
 
 TEST(SlamApp, BadArgumentsExitTwo) {

@@ -6,9 +6,9 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
-#include "mrpt_modules/core/parameter_blocks.h"
 #include "mrpt_modules/estimator/batch_refinement.h"
-#include "rawlog_io/sim/simulator.h"
+#include "mrpt_modules/factors/parameter_blocks.h"
+#include "sim/simulator.h"
 
 namespace rpvio {
 namespace {

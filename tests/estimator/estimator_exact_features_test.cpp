@@ -11,7 +11,7 @@
 #include <string>
 
 #include "mrpt_modules/estimator/sliding_window_estimator.h"
-#include "rawlog_io/sim/simulator.h"
+#include "sim/simulator.h"
 
 namespace rpvio {
 namespace {

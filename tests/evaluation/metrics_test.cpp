@@ -4,7 +4,8 @@
 
 #include <random>
 
-#include "apps/evaluation/trajectory_metrics.h"
+#include "evaluation/trajectory_metrics.h"
+#include "rawlog_io/trajectory_io.h"
 #include "tests/test_util.h"
 
 namespace rpvio::eval {

@@ -2,7 +2,7 @@
 // on (n, d), duplicates, wrong merges; and rpvio-eval --planes on a simulated scene's true planes.
 #include <gtest/gtest.h>
 
-#include "apps/evaluation/plane_map_accuracy.h"
+#include "evaluation/plane_map_accuracy.h"
 #include "planes_map/plane_map_exporters.h"
 #include "tests/test_util.h"
 

@@ -2,7 +2,7 @@
 // (issue 8's "every plane seen for more than 2 s is in the map").
 #include <gtest/gtest.h>
 
-#include "apps/evaluation/plane_visibility.h"
+#include "evaluation/plane_visibility.h"
 #include "mrpt_modules/frontend/feature_tracker.h"
 #include "planes_map/plane_map_exporters.h"
 #include "tests/test_util.h"
@@ -36,16 +36,17 @@ TEST(PlaneVisibility, CountsFramesWhereALabelCoversEnoughPixels) {
 }
 
 TEST(PlaneVisibility, ASmallFaceIsSeenButHasNoRoomForTenTracks) {
-  // The tracker's margin and spacing, which the default thresholds stand for.
-  EXPECT_EQ(eval::kTrackerWindowMargin, TrackerOptions().window_margin);
-  EXPECT_EQ(eval::kMinVisiblePlanePixels,
-            10 * TrackerOptions().klt_window * TrackerOptions().klt_window);
+  // The tracker's default margin and spacing: 10 px, 10 KLT windows of 21 px.
+  const TrackerOptions tracker;
+  ASSERT_EQ(tracker.window_margin, 10);
+  ASSERT_EQ(eval::minVisiblePlanePixels(tracker.klt_window), 4410);
   // Label 5: a 70 px square (4900 px), 50 x 50 px away from the background's 10 px margin.
   // Label 6: a 90 px square, 70 x 70 = 4900 px trackable.
   cv::Mat m(200, 200, CV_8U, cv::Scalar(0));
   m(cv::Rect(10, 10, 70, 70)) = 5;
   m(cv::Rect(100, 100, 90, 90)) = 6;
-  eval::PlaneVisibility visibility;
+  eval::PlaneVisibility visibility(eval::minVisiblePlanePixels(tracker.klt_window),
+                                   tracker.window_margin);
   for (int k = 0; k < 40; ++k) visibility.addMask(0.05 * k, m);
   const auto seconds = visibility.seconds();
   EXPECT_NEAR(seconds.at(5).seen_s, 2.0, 1e-9);
@@ -99,6 +100,18 @@ TEST(PlaneVisibility, EvalAppNamesATruePlaneTheMapLacks) {
   EXPECT_NE(json.find("\"missing\": [{\"id\": 1, \"seen_s\": "), std::string::npos) << json;
   // The floor is trackable, and every other true plane has an entry.
   EXPECT_NE(json.find("\"untrackable\": []"), std::string::npos) << json;
+  // With a mode whose tracker keeps 300 px from other labels, nothing is trackable: the floor is
+  // seen only.
+  test::writeText(dir.file("wide.ini"), "[FeatureTrackerModule]\nwindow_margin = 300\n");
+  ASSERT_EQ(test::runCommand(test::binDir() + "/rpvio-eval --gt " + gt + " --est " + gt + planes +
+                                 " --rawlog " + dir.file("seq/seq.rawlog") + " --config " +
+                                 dir.file("wide.ini") + " --json " + dir.file("w.json"),
+                             out),
+            0)
+      << out;
+  const std::string wide = test::readFile(dir.file("w.json"));
+  EXPECT_NE(wide.find("\"missing\": []"), std::string::npos) << wide;
+  EXPECT_NE(wide.find("\"untrackable\": [{\"id\": 1, "), std::string::npos) << wide;
   // --rawlog without a plane map is a usage error; a missing rawlog an input error naming it.
   EXPECT_EQ(test::runCommand(test::binDir() + "/rpvio-eval --gt " + gt + " --est " + gt +
                                  " --rawlog " + dir.file("seq/seq.rawlog"),

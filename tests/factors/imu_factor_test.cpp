@@ -5,7 +5,7 @@
 
 #include "mrpt_modules/factors/imu_factor.h"
 #include "mrpt_modules/factors/pose_manifold.h"
-#include "rawlog_io/sim/imu_simulator.h"
+#include "sim/imu_simulator.h"
 #include "tests/factors/jacobian_check.h"
 
 namespace rpvio {

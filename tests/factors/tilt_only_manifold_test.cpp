@@ -6,7 +6,7 @@
 
 #include <Eigen/Geometry>
 
-#include "mrpt_modules/core/parameter_blocks.h"
+#include "mrpt_modules/factors/parameter_blocks.h"
 #include "mrpt_modules/factors/pose_manifold.h"
 
 namespace rpvio {

@@ -1,14 +1,14 @@
-// Reprojection and homography factors: zero on exact simulated geometry, Jacobians against
-// central differences on the manifolds.
+// Reprojection and homography factors on the simulator's geometry: zero on the truth (the
+// factors' conventions are the simulator's); the reprojection factor's Jacobians against central
+// differences on the manifolds (the homography factor's: homography_factor_test.cpp).
 #include <gtest/gtest.h>
 
 #include <ceres/manifold.h>
-#include <ceres/sphere_manifold.h>
 
 #include "mrpt_modules/factors/homography_factor.h"
 #include "mrpt_modules/factors/pose_manifold.h"
 #include "mrpt_modules/factors/reprojection_factor.h"
-#include "rawlog_io/sim/simulator.h"
+#include "sim/simulator.h"
 #include "tests/factors/jacobian_check.h"
 
 namespace rpvio {
@@ -51,7 +51,7 @@ TEST(ReprojectionFactor, ZeroOnTruthAndJacobiansMatchNumeric) {
   EXPECT_LT(worst, 1e-6);
 }
 
-TEST(HomographyFactor, ZeroOnTruthAndJacobiansMatchNumeric) {
+TEST(HomographyFactor, ZeroOnTheSimulatorsTruePlane) {
   TwoViews v;
   const sim::SceneHit hit = v.sim.castPixel(v.ti, 420.0, 200.0);
   const sim::ScenePlane* plane = v.sim.scene().plane(hit.label);
@@ -67,15 +67,10 @@ TEST(HomographyFactor, ZeroOnTruthAndJacobiansMatchNumeric) {
   std::vector<const double*> p = {x[0].data(), x[1].data(), x[2].data(), x[3].data(), x[4].data()};
   f->Evaluate(p.data(), r, nullptr);
   EXPECT_LT(std::hypot(r[0], r[1]), 1e-6) << "plane " << hit.label;
-  // Off the truth: another plane distance and a tilted normal.
+  // The plane 0.7 m off: the prediction moves (by 0.15 pixel sigmas for this far wall).
   x[4][0] += 0.7;
-  const Eigen::Vector3d tilted = (plane->normal + Eigen::Vector3d(0.1, -0.05, 0.08)).normalized();
-  x[3] = {tilted.x(), tilted.y(), tilted.z()};
-  const PoseManifold pm;
-  const ceres::SphereManifold<3> sphere;
-  const double worst = test::worstJacobianError(*f, x, {&pm, &pm, &pm, &sphere, nullptr});
-  std::printf("homography factor: worst Jacobian error %.2e\n", worst);
-  EXPECT_LT(worst, 1e-6);
+  f->Evaluate(p.data(), r, nullptr);
+  EXPECT_GT(std::hypot(r[0], r[1]), 0.05) << "plane " << hit.label;
 }
 
 }  // namespace

@@ -7,7 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "mrpt_modules/frontend/corner_detector.h"
-#include "rawlog_io/sim/simulator.h"
+#include "sim/simulator.h"
 #include "tests/test_util.h"
 
 namespace rpvio {

@@ -7,8 +7,8 @@
 #include <opencv2/imgproc.hpp>
 #include <set>
 
+#include "common/input_error.h"
 #include "mrpt_modules/frontend/feature_tracker.h"
-#include "rawlog_io/input_error.h"
 #include "tests/test_util.h"
 
 namespace rpvio {

@@ -6,7 +6,7 @@
 #include <map>
 
 #include "mrpt_modules/frontend/feature_tracker.h"
-#include "rawlog_io/sim/simulator.h"
+#include "sim/simulator.h"
 
 namespace rpvio {
 namespace {

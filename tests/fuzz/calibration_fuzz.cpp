@@ -1,5 +1,5 @@
-// Fuzzes the calibration INI loader (Calibration::load, rawlog_io/calibration.h, through
-// rawlog_io/ini_file.h); a loaded calibration must have a positive image size and focal lengths.
+// Fuzzes the calibration INI loader (loadCalibration, rawlog_io/calibration.h, through
+// common/ini_file.h); a loaded calibration must have a positive image size and focal lengths.
 #include <cstddef>
 #include <cstdint>
 
@@ -11,7 +11,7 @@ using namespace rpvio;
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const fuzz::InputFile file(data, size, "calib.ini");
   fuzz::readExpectingOnlyInputError([&] {
-    const Calibration c = Calibration::load(file.path());
+    const Calibration c = loadCalibration(file.path());
     const CameraIntrinsics& cam = c.camera;
     fuzz::require(cam.width > 0 && cam.height > 0 && cam.fx > 0 && cam.fy > 0,
                   "image size or focal length not positive");

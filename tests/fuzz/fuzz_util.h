@@ -11,7 +11,7 @@
 #include <fstream>
 #include <string>
 
-#include "rawlog_io/input_error.h"
+#include "common/input_error.h"
 
 namespace rpvio::fuzz {
 

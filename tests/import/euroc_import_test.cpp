@@ -7,8 +7,9 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
+#include "common/input_error.h"
+#include "rawlog_io/calibration.h"
 #include "rawlog_io/euroc_import.h"
-#include "rawlog_io/input_error.h"
 #include "rawlog_io/rawlog_reader.h"
 #include "rawlog_io/rawlog_summary.h"
 #include "tests/test_util.h"
@@ -48,7 +49,7 @@ TEST(EurocImport, RealV101WithGroundTruth) {
   const double imu_rate = (counts.imu - 1) / (summary.last_t - summary.first_t);
   EXPECT_NEAR(imu_rate, 200.0, 1.0);
 
-  const Calibration calib = Calibration::load(dir.file("calib.ini"));
+  const Calibration calib = loadCalibration(dir.file("calib.ini"));
   EXPECT_EQ(calib.camera.width, 752);
   EXPECT_DOUBLE_EQ(calib.camera.fx, 458.654);
   EXPECT_EQ(calib.camera.model, DistortionModel::RadTan);

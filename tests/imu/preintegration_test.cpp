@@ -6,8 +6,8 @@
 
 #include "mrpt_modules/imu/imu_preintegration.h"
 #include "mrpt_modules/imu/so3.h"
-#include "rawlog_io/sim/flight_trajectory.h"
-#include "rawlog_io/sim/imu_simulator.h"
+#include "sim/flight_trajectory.h"
+#include "sim/imu_simulator.h"
 
 namespace rpvio {
 namespace {

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "mrpt_modules/initialization/visual_inertial_alignment.h"
-#include "rawlog_io/sim/simulator.h"
+#include "sim/simulator.h"
 
 namespace rpvio {
 namespace {

@@ -8,7 +8,7 @@
 
 #include "mrpt_modules/core/feature_frame.h"
 #include "mrpt_modules/imu/imu_preintegration.h"
-#include "rawlog_io/sim/simulator.h"
+#include "sim/simulator.h"
 
 namespace rpvio::test {
 

@@ -6,7 +6,7 @@
 
 #include "mrpt_modules/frontend/feature_tracker.h"
 #include "mrpt_modules/imu/imu_preintegration.h"
-#include "rawlog_io/sim/simulator.h"
+#include "sim/simulator.h"
 
 namespace rpvio::test {
 

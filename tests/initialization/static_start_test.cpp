@@ -5,11 +5,11 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include "common/text_table.h"
 #include "mrpt_modules/frontend/feature_tracker.h"
 #include "mrpt_modules/initialization/initializer.h"
 #include "rawlog_io/euroc_csv.h"
 #include "rawlog_io/euroc_import.h"
-#include "rawlog_io/text_table.h"
 #include "tests/test_util.h"
 
 namespace rpvio {

@@ -6,7 +6,7 @@
 #include <random>
 
 #include "mrpt_modules/initialization/time_offset.h"
-#include "rawlog_io/sim/simulator.h"
+#include "sim/simulator.h"
 
 namespace rpvio {
 namespace {

@@ -8,10 +8,10 @@
 #include <opencv2/imgcodecs.hpp>
 #include <random>
 
+#include "common/input_error.h"
 #include "planes_map/plane_map_exporters.h"
 #include "planes_map/planes_map.h"
-#include "rawlog_io/input_error.h"
-#include "rawlog_io/sim/warehouse_scene.h"
+#include "sim/warehouse_scene.h"
 #include "tests/test_util.h"
 
 namespace rpvio {

@@ -10,10 +10,10 @@
 #include <fstream>
 #include <limits>
 
+#include "common/ini_file.h"
+#include "common/input_error.h"
 #include "rawlog_io/calibration.h"
 #include "rawlog_io/euroc_csv.h"
-#include "rawlog_io/ini_file.h"
-#include "rawlog_io/input_error.h"
 #include "rawlog_io/rawlog_labels.h"
 #include "rawlog_io/rawlog_reader.h"
 #include "rawlog_io/rawlog_summary.h"
@@ -90,13 +90,13 @@ TEST(BadInput, MissingRawlog) {
 }
 
 TEST(BadInput, MissingCalibration) {
-  expectInputError([] { Calibration::load("/nonexistent/calib.ini"); }, "/nonexistent/calib.ini",
+  expectInputError([] { loadCalibration("/nonexistent/calib.ini"); }, "/nonexistent/calib.ini",
                    "not found");
 }
 
 TEST(BadInput, DirectoryOrDeviceGivenForAFile) {
   test::TempDir dir;
-  expectInputError([&] { Calibration::load(dir.path().string()); }, dir.path().string(),
+  expectInputError([&] { loadCalibration(dir.path().string()); }, dir.path().string(),
                    "calibration file expected, found a directory");
   expectInputError([] { RawlogReader("/dev/null"); }, "/dev/null",
                    "rawlog file expected, found a special file");
@@ -107,25 +107,25 @@ TEST(BadInput, DirectoryOrDeviceGivenForAFile) {
 TEST(BadInput, CalibrationMalformedValue) {
   test::TempDir dir;
   Calibration c = tinyCalibration();
-  c.save(dir.file("calib.ini"));
+  saveCalibration(dir.file("calib.ini"), c);
   std::ifstream in(dir.file("calib.ini"));
   std::string text((std::istreambuf_iterator<char>(in)), {});
   text.replace(text.find("fx = 10"), 7, "fx = ten");
   test::writeText(dir.file("calib.ini"), text);
-  expectInputError([&] { Calibration::load(dir.file("calib.ini")); }, dir.file("calib.ini"),
+  expectInputError([&] { loadCalibration(dir.file("calib.ini")); }, dir.file("calib.ini"),
                    "line 5");
 }
 
 TEST(BadInput, CalibrationImageSizeNotAnInt) {
   // Found by tests/fuzz/calibration_fuzz.cpp: 8e9 was cast to int (undefined behaviour).
   test::TempDir dir;
-  tinyCalibration().save(dir.file("calib.ini"));
+  saveCalibration(dir.file("calib.ini"), tinyCalibration());
   const std::string text = test::readFile(dir.file("calib.ini"));
   for (const std::string width : {"8000000001", "0", "7.5"}) {
     std::string bad = text;
     bad.replace(bad.find("width = 8"), 9, "width = " + width);
     test::writeText(dir.file("calib.ini"), bad);
-    expectInputError([&] { Calibration::load(dir.file("calib.ini")); }, dir.file("calib.ini"),
+    expectInputError([&] { loadCalibration(dir.file("calib.ini")); }, dir.file("calib.ini"),
                      "line 3: 'width' must be a positive whole number of pixels");
   }
 }
@@ -161,11 +161,11 @@ TEST(BadInput, NulByteInsideANumber) {
   std::ofstream(dir.file("t.tum"), std::ios::binary) << "1 0 0 0 0 0 0 1\n2 0 0 0 0 0 0 1\0x\n"s;
   expectInputError([&] { readTum(dir.file("t.tum")); }, dir.file("t.tum"),
                    "line 2: not a finite number");
-  tinyCalibration().save(dir.file("calib.ini"));
+  saveCalibration(dir.file("calib.ini"), tinyCalibration());
   std::string ini = test::readFile(dir.file("calib.ini"));
   ini.replace(ini.find("fx = 10"), 7, "fx = 10\0x"s);
   std::ofstream(dir.file("calib.ini"), std::ios::binary) << ini;
-  expectInputError([&] { Calibration::load(dir.file("calib.ini")); }, dir.file("calib.ini"),
+  expectInputError([&] { loadCalibration(dir.file("calib.ini")); }, dir.file("calib.ini"),
                    "line 5: 'fx': not a finite number");
 }
 

@@ -22,8 +22,8 @@ TEST(Calibration, RoundTripsBothDistortionModels) {
        {DistortionModel::RadTan, DistortionModel::Equidistant, DistortionModel::None}) {
     test::TempDir dir;
     const Calibration a = sample(model);
-    a.save(dir.file("calib.ini"));
-    const Calibration b = Calibration::load(dir.file("calib.ini"));
+    saveCalibration(dir.file("calib.ini"), a);
+    const Calibration b = loadCalibration(dir.file("calib.ini"));
     EXPECT_EQ(b.camera.model, model);
     EXPECT_EQ(b.camera.width, 752);
     EXPECT_DOUBLE_EQ(b.camera.fy, a.camera.fy);
@@ -41,7 +41,7 @@ TEST(Calibration, MissingKeyIsNamed) {
   test::TempDir dir;
   test::writeText(dir.file("c.ini"), "[camera]\nwidth = 10\n");
   try {
-    Calibration::load(dir.file("c.ini"));
+    loadCalibration(dir.file("c.ini"));
     FAIL();
   } catch (const std::exception& e) {
     EXPECT_NE(std::string(e.what()).find("missing key 'height'"), std::string::npos) << e.what();

@@ -10,7 +10,7 @@
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 
-#include "rawlog_io/input_error.h"
+#include "common/input_error.h"
 #include "rawlog_io/rawlog_reader.h"
 #include "rawlog_io/rawlog_writer.h"
 #include "tests/test_util.h"

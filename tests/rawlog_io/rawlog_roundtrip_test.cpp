@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <opencv2/core.hpp>
 
-#include "rawlog_io/input_error.h"
+#include "common/input_error.h"
 #include "rawlog_io/rawlog_labels.h"
 #include "rawlog_io/rawlog_reader.h"
 #include "rawlog_io/rawlog_writer.h"

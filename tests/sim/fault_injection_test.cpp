@@ -11,7 +11,7 @@
 
 #include "rawlog_io/rawlog_labels.h"
 #include "rawlog_io/rawlog_reader.h"
-#include "rawlog_io/sim/sequence_writer.h"
+#include "sim/sequence_writer.h"
 #include "tests/test_util.h"
 
 namespace rpvio::sim {

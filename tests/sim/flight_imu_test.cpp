@@ -2,8 +2,8 @@
 // the noise-free IMU from the true initial state reproduces the true trajectory.
 #include <gtest/gtest.h>
 
-#include "rawlog_io/sim/flight_trajectory.h"
-#include "rawlog_io/sim/imu_simulator.h"
+#include "sim/flight_trajectory.h"
+#include "sim/imu_simulator.h"
 
 namespace rpvio::sim {
 namespace {

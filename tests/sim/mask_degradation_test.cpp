@@ -1,7 +1,7 @@
 // CNN-like mask degradation: each option does what it says, and nothing happens by default.
 #include <gtest/gtest.h>
 
-#include "rawlog_io/sim/mask_degradation.h"
+#include "sim/mask_degradation.h"
 
 namespace rpvio::sim {
 namespace {

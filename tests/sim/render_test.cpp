@@ -3,7 +3,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "rawlog_io/sim/simulator.h"
+#include "sim/simulator.h"
 
 namespace rpvio::sim {
 namespace {

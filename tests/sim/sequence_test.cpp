@@ -5,11 +5,12 @@
 #include <fstream>
 #include <sstream>
 
+#include "common/input_error.h"
 #include "rawlog_io/calibration.h"
 #include "rawlog_io/rawlog_summary.h"
-#include "rawlog_io/sim/sequence_writer.h"
-#include "rawlog_io/sim/sim_config.h"
 #include "rawlog_io/trajectory_io.h"
+#include "sim/sequence_writer.h"
+#include "sim/sim_config.h"
 #include "tests/test_util.h"
 
 namespace fs = std::filesystem;
@@ -44,7 +45,7 @@ TEST(Sequence, WritesAReadableDataset) {
   EXPECT_EQ(summary.observations_per_label.at("IMU"), 101u);
   EXPECT_EQ(summary.observations_per_label.at("GROUND_TRUTH"), 101u);
   EXPECT_EQ(readTum(dir.file("groundtruth.tum")).size(), 101u);
-  const Calibration calib = Calibration::load(dir.file("calib.ini"));
+  const Calibration calib = loadCalibration(dir.file("calib.ini"));
   EXPECT_EQ(calib.camera.width, 640);
   EXPECT_NEAR(calib.camera.fx, 320.0, 1e-9);
 }
@@ -77,6 +78,18 @@ TEST(Sequence, ConfigFileDocumentsTheBuiltInDefaults) {
   EXPECT_EQ(file.imu.gyro_noise_density, builtin.imu.gyro_noise_density);
   EXPECT_TRUE(file.initial_bias.accel.isApprox(builtin.initial_bias.accel));
   EXPECT_EQ(file.render.noise_sigma, builtin.render.noise_sigma);
+}
+
+TEST(Sequence, UnknownKeyInTheSceneFileIsABadConfig) {
+  test::TempDir dir;
+  test::writeText(dir.file("scene.ini"), "[flight]\nradius = 12\nspeeed = 3\n");
+  try {
+    SimConfig::load(dir.file("scene.ini"));
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              dir.file("scene.ini") + ":line 3: unknown key 'speeed' in [flight]");
+  }
 }
 
 TEST(SimApp, BadArgumentsExitTwo) {

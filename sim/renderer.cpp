@@ -1,0 +1,100 @@
+#include "sim/renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <thread>
+#include <vector>
+
+namespace rpvio::sim {
+namespace {
+
+/// Runs body(row) for every row, split over threads in interleaved blocks.
+template <typename Body>
+void parallelRows(int rows, int threads, Body body) {
+  const int n = threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
+  std::vector<std::thread> workers;
+  for (int w = 0; w < n; ++w)
+    workers.emplace_back([=] {
+      for (int r = w; r < rows; r += n) body(r);
+    });
+  for (auto& t : workers) t.join();
+}
+
+}  // namespace
+
+std::pair<Eigen::Vector3d, Eigen::Vector3d> pixelRay(const PinholeCamera& cam,
+                                                     const Eigen::Isometry3d& T_WC, double u,
+                                                     double v) {
+  const Eigen::Vector3d d_c((u - cam.cx) / cam.fx, (v - cam.cy) / cam.fy, 1.0);
+  return {T_WC.translation(), T_WC.linear() * d_c};
+}
+
+RenderedFrame renderFrame(const WarehouseScene& scene, const PinholeCamera& cam,
+                          const Eigen::Isometry3d& T_WC, const RenderOptions& opt,
+                          uint64_t noise_seed) {
+  const int W = cam.width, H = cam.height;
+  cv::Mat intensity(H, W, CV_32F), labels(H, W, CV_8U);
+  const double footprint_per_depth = 1.0 / cam.fx;  // one pixel at depth 1 m
+  const int k = std::max(1, opt.supersampling);
+  const WarehouseScene::PlanesInView view = scene.planesInView(T_WC.translation());
+  auto shade = [&](double u, double v) {
+    return scene.cast(view, pixelRay(cam, T_WC, u, v).second, footprint_per_depth / k);
+  };
+
+  // Pass 1: one ray per pixel centre (labels), or k x k rays everywhere.
+  parallelRows(H, opt.threads, [&](int r) {
+    for (int c = 0; c < W; ++c) {
+      const SceneHit centre = shade(c, r);
+      labels.at<uint8_t>(r, c) = static_cast<uint8_t>(centre.label);
+      if (opt.supersampling <= 0) {
+        intensity.at<float>(r, c) = centre.intensity;
+        continue;
+      }
+      float sum = 0;
+      for (int i = 0; i < k; ++i)
+        for (int j = 0; j < k; ++j)
+          sum += shade(c - 0.5 + (j + 0.5) / k, r - 0.5 + (i + 0.5) / k).intensity;
+      intensity.at<float>(r, c) = sum / (k * k);
+    }
+  });
+  // Pass 2 (adaptive): 2x2 rotated-grid samples where a neighbour has another label (edges).
+  if (opt.supersampling <= 0) {
+    parallelRows(H, opt.threads, [&](int r) {
+      for (int c = 0; c < W; ++c) {
+        const uint8_t l = labels.at<uint8_t>(r, c);
+        const bool edge = (c > 0 && labels.at<uint8_t>(r, c - 1) != l) ||
+                          (c + 1 < W && labels.at<uint8_t>(r, c + 1) != l) ||
+                          (r > 0 && labels.at<uint8_t>(r - 1, c) != l) ||
+                          (r + 1 < H && labels.at<uint8_t>(r + 1, c) != l);
+        if (!edge) continue;
+        static const double kOffsets[4][2] = {
+            {-0.125, -0.375}, {0.375, -0.125}, {0.125, 0.375}, {-0.375, 0.125}};
+        float sum = 0;
+        for (const auto& o : kOffsets) sum += shade(c + o[0], r + o[1]).intensity;
+        intensity.at<float>(r, c) = sum / 4;
+      }
+    });
+  }
+
+  // Vignetting: darkening growing with the squared distance from the principal point.
+  const double r_max2 = cam.cx * cam.cx + cam.cy * cam.cy;
+  for (int r = 0; r < H; ++r) {
+    float* row = intensity.ptr<float>(r);
+    for (int c = 0; c < W; ++c) {
+      const double d2 = (c - cam.cx) * (c - cam.cx) + (r - cam.cy) * (r - cam.cy);
+      row[c] *= static_cast<float>(1.0 - opt.vignetting * d2 / r_max2);
+    }
+  }
+  if (opt.noise_sigma > 0) {
+    cv::Mat noise(H, W, CV_32F);
+    cv::RNG rng(noise_seed);
+    rng.fill(noise, cv::RNG::NORMAL, 0.0, opt.noise_sigma);
+    intensity += noise;
+  }
+  RenderedFrame frame;
+  intensity.convertTo(frame.image, CV_8U);  // rounds and saturates to 0..255
+  frame.mask = labels;
+  return frame;
+}
+
+}  // namespace rpvio::sim

@@ -1,0 +1,40 @@
+#pragma once
+// Ray-casting renderer of the warehouse for a pinhole camera: image (8-bit, filtered textures,
+// anti-aliased edges, vignetting, Gaussian noise) and the plane-instance label mask of the same
+// instant. Pixel (u, v) integer coordinates are pixel centres (OpenCV convention).
+#include <Eigen/Geometry>
+#include <opencv2/core.hpp>
+
+#include "sim/warehouse_scene.h"
+
+namespace rpvio::sim {
+
+struct PinholeCamera {
+  int width = 640, height = 480;
+  double fx = 320, fy = 320, cx = 319.5, cy = 239.5;  // 90° horizontal field of view
+};
+
+struct RenderOptions {
+  double noise_sigma = 2.0;  // grey levels, Gaussian
+  double vignetting = 0.25;  // relative darkening at the image corners
+  int supersampling = 0;     // 0: 2x2 only where labels change (edges); k > 0: k x k everywhere
+  int threads = 0;           // 0: all hardware threads
+};
+
+struct RenderedFrame {
+  cv::Mat image;  // CV_8UC1
+  cv::Mat mask;   // CV_8UC1 labels (see warehouse_scene.h)
+};
+
+/// Renders the scene as posed (WarehouseScene::setTime) from camera pose T_WC (camera in world).
+/// Deterministic for a given noise_seed, whatever the thread count.
+RenderedFrame renderFrame(const WarehouseScene& scene, const PinholeCamera& camera,
+                          const Eigen::Isometry3d& T_WC, const RenderOptions& options,
+                          uint64_t noise_seed);
+
+/// World ray of pixel (u, v): origin and direction with unit camera-z component (t = depth).
+std::pair<Eigen::Vector3d, Eigen::Vector3d> pixelRay(const PinholeCamera& camera,
+                                                     const Eigen::Isometry3d& T_WC, double u,
+                                                     double v);
+
+}  // namespace rpvio::sim

@@ -1,0 +1,138 @@
+#include "sim/sim_config.h"
+
+#include <cmath>
+
+#include "common/ini_file.h"
+#include "common/input_error.h"
+
+namespace rpvio::sim {
+
+Eigen::Isometry3d SimConfig::defaultCameraMount() {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() << 0, 0, 1,  //
+      -1, 0, 0,           //
+      0, -1, 0;           // columns: camera x, y, z axes in the body frame
+  T.translation() = Eigen::Vector3d(0.10, 0.0, 0.05);
+  return T;
+}
+
+ImuBiasState SimConfig::defaultInitialBias() {
+  ImuBiasState b;
+  b.gyro = Eigen::Vector3d(0.003, -0.002, 0.004);  // rad/s, consumer MEMS turn-on bias
+  b.accel = Eigen::Vector3d(0.05, -0.04, 0.06);    // m/s^2
+  return b;
+}
+
+SimConfig SimConfig::load(const std::string& path) {
+  const IniFile ini(path);
+  SimConfig c;
+  auto num = [&](const char* section, const char* key, double& value) {
+    value = ini.numberOr(section, key, value);
+  };
+  auto vec = [&](const char* section, const char* key, Eigen::Vector3d& value) {
+    if (!ini.has(section, key)) return;
+    const auto v = ini.numbers(section, key, 3);
+    value = Eigen::Vector3d(v[0], v[1], v[2]);
+  };
+  auto positive = [&](const char* section, const char* key, double value) {
+    if (!(value > 0))
+      throw InputError(path, "line " + std::to_string(ini.line(section, key)),
+                       std::string("'") + key + "' must be positive");
+  };
+  double seed = static_cast<double>(c.seed), characters = 0;
+  num("sequence", "duration", c.duration);
+  num("sequence", "camera_rate", c.camera_rate);
+  num("sequence", "time_offset", c.time_offset);
+  num("sequence", "seed", seed);
+  num("sequence", "characters", characters);
+  positive("sequence", "duration", c.duration);
+  positive("sequence", "camera_rate", c.camera_rate);
+  c.seed = static_cast<uint64_t>(seed);
+  c.scene.characters = static_cast<int>(characters);
+
+  FlightParams& f = c.flight;
+  num("flight", "radius", f.radius);
+  num("flight", "speed", f.speed);
+  num("flight", "speed_ramp", f.speed_ramp);
+  num("flight", "height", f.height);
+  num("flight", "height_amplitude", f.height_amplitude);
+  num("flight", "height_period", f.height_period);
+  num("flight", "start_push", f.start_push);
+  num("flight", "start_push_time", f.start_push_time);
+  num("flight", "tilt_amplitude", f.tilt_amplitude);
+  positive("flight", "radius", f.radius);
+
+  SceneParams& s = c.scene;
+  double crates = s.crates;
+  num("scene", "room_half_size", s.room_half_size);
+  num("scene", "room_height", s.room_height);
+  num("scene", "crates", crates);
+  num("scene", "texel_size", s.texel_size);
+  num("scene", "character_ring_radius", s.character_ring_radius);
+  num("scene", "character_height", s.character_height);
+  s.crates = static_cast<int>(crates);
+  s.ceiling = ini.flagOr("scene", "ceiling", s.ceiling);
+  s.racks = ini.flagOr("scene", "racks", s.racks);
+  positive("scene", "texel_size", s.texel_size);
+
+  double width = c.camera.width, height = c.camera.height, hfov_deg = 90;
+  num("camera", "width", width);
+  num("camera", "height", height);
+  num("camera", "hfov_deg", hfov_deg);
+  positive("camera", "hfov_deg", hfov_deg);
+  c.camera.width = static_cast<int>(width);
+  c.camera.height = static_cast<int>(height);
+  c.camera.fx = c.camera.fy = 0.5 * width / std::tan(0.5 * hfov_deg * M_PI / 180);
+  c.camera.cx = 0.5 * (width - 1);
+  c.camera.cy = 0.5 * (height - 1);
+  Eigen::Vector3d mount = c.T_BC.translation();
+  vec("camera", "T_BC_translation", mount);
+  c.T_BC.translation() = mount;
+
+  num("image", "noise_sigma", c.render.noise_sigma);
+  num("image", "vignetting", c.render.vignetting);
+  double ss = c.render.supersampling;
+  num("image", "supersampling", ss);
+  c.render.supersampling = static_cast<int>(ss);
+
+  num("imu", "rate_hz", c.imu.rate_hz);
+  num("imu", "gyro_noise_density", c.imu.gyro_noise_density);
+  num("imu", "accel_noise_density", c.imu.accel_noise_density);
+  num("imu", "gyro_random_walk", c.imu.gyro_random_walk);
+  num("imu", "accel_random_walk", c.imu.accel_random_walk);
+  num("imu", "gravity", c.imu.gravity);
+  positive("imu", "rate_hz", c.imu.rate_hz);
+  c.imu_noise = ini.flagOr("imu", "noise", c.imu_noise);
+  vec("imu", "gyro_bias", c.initial_bias.gyro);
+  vec("imu", "accel_bias", c.initial_bias.accel);
+
+  double bleed = 0, split = 0;
+  num("mask", "boundary_bleed_px", bleed);
+  num("mask", "missed_plane_rate", c.mask.missed_plane_rate);
+  num("mask", "split_plane_id", split);
+  num("mask", "spurious_blob_rate", c.mask.spurious_blob_rate);
+  c.mask.boundary_bleed_px = static_cast<int>(bleed);
+  c.mask.split_plane_id = static_cast<int>(split);
+  const auto unknown = ini.unreadKeys();
+  if (!unknown.empty())
+    throw InputError(
+        path, "line " + std::to_string(unknown.front().line),
+        "unknown key '" + unknown.front().key + "' in [" + unknown.front().section + "]");
+  return c;
+}
+
+Calibration SimConfig::calibration() const {
+  Calibration calib;
+  calib.camera.width = camera.width;
+  calib.camera.height = camera.height;
+  calib.camera.fx = camera.fx;
+  calib.camera.fy = camera.fy;
+  calib.camera.cx = camera.cx;
+  calib.camera.cy = camera.cy;
+  calib.T_BC = T_BC;
+  calib.time_offset = 0.0;  // what a user would know before calibrating; the truth is time_offset
+  calib.imu = imu;
+  return calib;
+}
+
+}  // namespace rpvio::sim

@@ -1,0 +1,41 @@
+#pragma once
+// Everything a simulated sequence depends on. Loaded from an INI file (config/sim/warehouse.ini
+// documents every key and its default); every key is optional.
+#include <string>
+
+#include "common/sensor_types.h"
+#include "sim/fault_injection.h"
+#include "sim/flight_trajectory.h"
+#include "sim/imu_simulator.h"
+#include "sim/mask_degradation.h"
+#include "sim/renderer.h"
+#include "sim/warehouse_scene.h"
+
+namespace rpvio::sim {
+
+struct SimConfig {
+  double duration = 80.0;     // s
+  double camera_rate = 20.0;  // Hz, images and masks
+  double time_offset = 0.0;   // s, true camera-IMU offset: t_imu = t_cam + time_offset
+  uint64_t seed = 1;          // scene layout, textures, all noise
+  FlightParams flight;
+  SceneParams scene;  // scene.characters = number of dancing characters
+  PinholeCamera camera;
+  Eigen::Isometry3d T_BC = defaultCameraMount();
+  RenderOptions render;
+  ImuNoise imu;  // noise densities, random walks, rate, gravity
+  bool imu_noise = true;
+  ImuBiasState initial_bias = defaultInitialBias();
+  MaskDegradation mask;
+  FaultInjection faults;  // off by default; set by rpvio-sim's fault options
+
+  /// Camera looking along body x, 10 cm ahead and 5 cm above the IMU (camera z = body x, camera
+  /// x = −body y, camera y = −body z).
+  static Eigen::Isometry3d defaultCameraMount();
+  static ImuBiasState defaultInitialBias();
+  /// Throws InputError naming the file and line on a bad value.
+  static SimConfig load(const std::string& ini_path);
+  Calibration calibration() const;
+};
+
+}  // namespace rpvio::sim

@@ -1,0 +1,70 @@
+#include "sim/simulator.h"
+
+#include <cmath>
+
+namespace rpvio::sim {
+namespace {
+SceneParams seeded(SceneParams p, uint64_t seed) {
+  p.seed = seed;
+  return p;
+}
+}  // namespace
+
+Simulator::Simulator(const SimConfig& config)
+    : config_(config), flight_(config.flight), scene_(seeded(config.scene, config.seed)) {}
+
+Eigen::Isometry3d Simulator::bodyPose(double t) const {
+  const FlightState s = flight_.at(t);
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = s.R_wb;
+  T.translation() = s.p;
+  return T;
+}
+
+Eigen::Isometry3d Simulator::cameraPose(double t) const { return bodyPose(t) * config_.T_BC; }
+
+std::vector<double> Simulator::frameTimes() const {
+  std::vector<double> times;
+  const auto n = static_cast<int>(std::floor(config_.duration * config_.camera_rate + 1e-9));
+  for (int k = 0; k <= n; ++k) times.push_back(k / config_.camera_rate);
+  return times;
+}
+
+void Simulator::poseAt(double t) {
+  if (t != posed_time_) scene_.setTime(t);
+  posed_time_ = t;
+}
+
+RenderedFrame Simulator::render(double t, int frame_index) {
+  poseAt(t);
+  const uint64_t frame_seed = config_.seed * 1000003ULL + static_cast<uint64_t>(frame_index);
+  RenderedFrame frame =
+      renderFrame(scene_, config_.camera, cameraPose(t), config_.render, frame_seed);
+  if (config_.mask.enabled()) degradeMask(frame.mask, config_.mask, frame_seed ^ 0x5bd1e995ULL);
+  return frame;
+}
+
+SceneHit Simulator::castPixel(double t, double u, double v) {
+  poseAt(t);
+  const auto [o, d] = pixelRay(config_.camera, cameraPose(t), u, v);
+  return scene_.cast(o, d, 1.0 / config_.camera.fx);
+}
+
+std::optional<Eigen::Vector2d> Simulator::project(double t, const Eigen::Vector3d& X) const {
+  const Eigen::Vector3d Xc = cameraPose(t).inverse() * X;
+  if (Xc.z() <= 1e-6) return std::nullopt;
+  const PinholeCamera& c = config_.camera;
+  return Eigen::Vector2d(c.fx * Xc.x() / Xc.z() + c.cx, c.fy * Xc.y() / Xc.z() + c.cy);
+}
+
+double Simulator::distanceToCharacters(double t, const Eigen::Vector3d& X) {
+  poseAt(t);
+  return scene_.distanceToCharacters(X);
+}
+
+std::vector<ImuSample> Simulator::imuStream(std::vector<ImuBiasState>* true_biases) const {
+  return simulateImu(flight_, config_.imu, config_.initial_bias, config_.duration,
+                     config_.imu_noise, config_.seed * 7777 + 1, true_biases);
+}
+
+}  // namespace rpvio::sim

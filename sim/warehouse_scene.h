@@ -1,0 +1,100 @@
+#pragma once
+// The simulated warehouse: a closed room (floor, four walls, optional ceiling), crates inside the
+// flight circle, racks along the walls — every visible face a textured rectangle with its own,
+// stable plane id — and dancing characters around the circle's centre.
+//
+// Plane ids: floor 1, walls 2..5, ceiling 6, then crate and rack faces from 10 upwards.
+// Mask labels: plane id on static planes, 0 on characters, 255 where the ray hits nothing.
+#include <Eigen/Core>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "sim/dancing_character.h"
+#include "sim/mip_texture.h"
+
+namespace rpvio::sim {
+
+constexpr int kMaskCharacter = 0;
+constexpr int kMaskNothing = 255;
+
+/// A flat disc painted on a surface (tests measure where the renderer draws it).
+struct DiscMarker {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // world, on a plane
+  double radius = 0.1;                               // m
+  float intensity = 255;
+};
+
+struct SceneParams {
+  double room_half_size = 20.0;  // m, walls at x, y = ±half size
+  double room_height = 10.0;     // m
+  bool ceiling = true;
+  int crates = 8;                                     // inside the flight circle
+  double crate_ring_min = 3.0, crate_ring_max = 6.5;  // m from the centre
+  bool racks = true;                                  // along the walls
+  double texel_size = 0.02;                           // m per texture texel
+  int characters = 0;
+  double character_ring_radius = 10.5;  // m; < 15 sin 45°: in the 90° view from the circle
+  double character_height = 1.8;        // m
+  uint64_t seed = 1;
+  std::vector<DiscMarker> markers;
+};
+
+struct ScenePlane {
+  int id = 0;
+  Eigen::Vector3d origin, u_axis, v_axis, normal;  // rectangle corner, in-plane unit axes, normal
+  double width = 0, height = 0;                    // extents along u and v (m)
+  float shade = 1.0f;                              // fixed lighting of this face
+  MipTexture texture;
+  /// World plane n·X = d.
+  double distance() const { return normal.dot(origin); }
+};
+
+struct SceneHit {
+  double t = 0;  // ray parameter (depth when dir has unit camera z)
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  int label = kMaskNothing;  // plane id, kMaskCharacter or kMaskNothing
+  int character = -1;        // index of the character hit, if any
+  float intensity = 0;       // shaded surface intensity 0..255
+};
+
+class WarehouseScene {
+ public:
+  explicit WarehouseScene(const SceneParams& params);
+
+  /// Poses the characters at time t; the queries below are then read-only (thread-safe).
+  void setTime(double t);
+  /// The planes a ray from `origin` can hit: those whose front side faces it, in scene order, each
+  /// with n·(p0 − origin) (< 0). Computed once per camera position, shared by its rays.
+  struct PlanesInView {
+    Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+    std::vector<std::pair<const ScenePlane*, double>> planes;
+  };
+  PlanesInView planesInView(const Eigen::Vector3d& origin) const;
+  /// First surface along origin + t·dir (t > 0). `footprint_per_t`: pixel footprint (m) per unit t,
+  /// for texture filtering.
+  SceneHit cast(const PlanesInView& view, const Eigen::Vector3d& dir, double footprint_per_t) const;
+  SceneHit cast(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir,
+                double footprint_per_t) const {
+    return cast(planesInView(origin), dir, footprint_per_t);
+  }
+  /// Shortest distance from a point to any character's surface at the current time.
+  double distanceToCharacters(const Eigen::Vector3d& x) const;
+
+  const std::vector<ScenePlane>& planes() const { return planes_; }
+  const ScenePlane* plane(int id) const;
+  const std::vector<DancingCharacter>& characters() const { return characters_; }
+  const SceneParams& params() const { return params_; }
+
+ private:
+  void addRectangle(int id, const Eigen::Vector3d& centre, const Eigen::Vector3d& normal,
+                    const Eigen::Vector3d& u_axis, double width, double height, TextureStyle style);
+  void addBox(int& next_id, const Eigen::Vector2d& centre, double yaw, double half_x, double half_y,
+              double height, TextureStyle style);
+
+  SceneParams params_;
+  std::vector<ScenePlane> planes_;
+  std::vector<DancingCharacter> characters_;
+};
+
+}  // namespace rpvio::sim
