@@ -17,6 +17,7 @@ namespace rpvio {
 struct PipelineContext {
   Calibration calibration;
   Bus bus;
+  std::string output_dir;  // where output modules write; "" = nowhere (they write nothing)
 };
 
 class Module : public mrpt::rtti::CObject, public mrpt::system::COutputLogger {

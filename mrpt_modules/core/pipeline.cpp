@@ -10,8 +10,9 @@
 namespace rpvio {
 
 Pipeline::Pipeline(const std::string& config_path, const Calibration& calibration,
-                   mrpt::system::VerbosityLevel verbosity) {
+                   mrpt::system::VerbosityLevel verbosity, const std::string& output_dir) {
   context_.calibration = calibration;
+  context_.output_dir = output_dir;
   const IniFile ini(config_path);
   std::string list = ini.text("Pipeline", "modules");
   for (char& c : list)
@@ -72,10 +73,16 @@ std::vector<std::string> Pipeline::missingSensors(const std::string& rawlog_path
 
 void Pipeline::play(const std::string& rawlog_path, const std::function<void(size_t)>& on_entry) {
   RawlogReader reader(rawlog_path);
+  context_.bus.publish(RunStart{});
   while (auto obs = reader.next()) {
     context_.bus.publishObservation({obs, &reader});
     if (on_entry) on_entry(reader.entriesRead());
   }
+  finish();
+}
+
+void Pipeline::finish(const RunEnd& end) {
+  context_.bus.publish(end);
   for (auto& m : modules_) m->finish();
 }
 

@@ -1,16 +1,19 @@
 #include "mrpt_modules/estimator/estimator_module.h"
 
+#include <mrpt/core/initializer.h>
+
 #include "common/input_error.h"
 #include "rawlog_io/rawlog_labels.h"
 #include "rawlog_io/rawlog_reader.h"
 
 IMPLEMENTS_MRPT_OBJECT(SlidingWindowEstimatorModule, rpvio::Module, rpvio)
 
-namespace rpvio {
-
-void registerEstimatorModules() {
-  mrpt::rtti::registerClass(CLASS_ID(SlidingWindowEstimatorModule));
+// Registered with MRPT RTTI when the program loads, so a config can name it.
+MRPT_INITIALIZER(register_SlidingWindowEstimatorModule) {
+  mrpt::rtti::registerClass(CLASS_ID(rpvio::SlidingWindowEstimatorModule));
 }
+
+namespace rpvio {
 
 void SlidingWindowEstimatorModule::initialize(const IniFile& ini, const std::string& s,
                                               PipelineContext& context) {
@@ -28,6 +31,18 @@ void SlidingWindowEstimatorModule::finish() {
   while (!pending_.empty()) processOldestPending();
   estimator_->finishMap();
   if (!estimator_->refinementReport().empty()) MRPT_LOG_INFO_STREAM(estimator_->refinementReport());
+  EstimatorSummary summary;
+  summary.planes_map = &estimator_->planesMap();
+  summary.refined_trajectory = estimator_->refinedTrajectory();
+  summary.refinement_report = estimator_->refinementReport();
+  summary.refinement_s = estimator_->refinementSeconds();
+  summary.initialized_at = initialized_at_;
+  summary.time_offset_s = estimator_->timeOffset();
+  summary.time_offset_note = estimator_->timeOffsetNote();
+  summary.resets = estimator_->resetLog();
+  summary.status =
+      estimator_->status() == "tracking" ? estimator_->status() : estimator_->statusDetail();
+  bus_->publish(summary);
 }
 
 void SlidingWindowEstimatorModule::onImu(const ObservationMessage& m) {
@@ -67,7 +82,7 @@ void SlidingWindowEstimatorModule::processOldestPending() {
     time_offset_reported_ = true;
     MRPT_LOG_INFO_STREAM("t=" << timeText(frame.t) << ": " << estimator_->timeOffsetNote());
   }
-  timings_.push_back({frame.t, estimator_->lastReport()});
+  bus_->publish(EstimatorFrame{frame.t, estimator_->lastReport()});
   if (estimator_->status() != last_status_) {
     last_status_ = estimator_->status();
     if (estimator_->lastReport().state == "reset")

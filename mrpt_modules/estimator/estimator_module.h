@@ -3,9 +3,10 @@
 // FeatureFrame hands the estimator the IMU samples since the previous frame (camera time moved to
 // the IMU clock by the time offset: the calibration's, corrected by the estimator's estimate). A
 // frame waits until the IMU stream has reached its time; at the end, the waiting frames are
-// processed with the samples there are. Publishes a StateEstimate per frame once
-// initialized; says once per change why it is not (yet) tracking. Options: section
-// [SlidingWindowEstimatorModule] (see EstimatorOptions).
+// processed with the samples there are. Publishes an EstimatorFrame per frame processed and a
+// StateEstimate per frame once initialized; says once per change why it is not (yet) tracking; at
+// the end, publishes the EstimatorSummary. Options: section [SlidingWindowEstimatorModule] (see
+// EstimatorOptions) and [PlanesMap].
 #include <deque>
 #include <memory>
 
@@ -14,12 +15,6 @@
 
 namespace rpvio {
 
-/// Per frame: the estimator's report (time, features and planes in use, state).
-struct FrameTiming {
-  double t = 0;  // IMU clock
-  FrameReport report;
-};
-
 class SlidingWindowEstimatorModule : public Module {
   DEFINE_MRPT_OBJECT(SlidingWindowEstimatorModule, rpvio)
 
@@ -27,9 +22,8 @@ class SlidingWindowEstimatorModule : public Module {
   void initialize(const IniFile& config, const std::string& section,
                   PipelineContext& context) override;
   const SlidingWindowEstimator& estimator() const { return *estimator_; }
-  const std::vector<FrameTiming>& timings() const { return timings_; }
+  /// The last pending frames, then the map finished; publishes the EstimatorSummary.
   void finish() override;
-  double initializedAt() const { return initialized_at_; }
 
  private:
   void onImu(const ObservationMessage& message);
@@ -43,12 +37,8 @@ class SlidingWindowEstimatorModule : public Module {
   std::deque<ImuSample> imu_;
   double previous_frame_t_ = -1;
   std::string last_status_;
-  std::vector<FrameTiming> timings_;
   double initialized_at_ = -1;
   bool time_offset_reported_ = false;
 };
-
-/// Registers the estimator module classes with MRPT RTTI.
-void registerEstimatorModules();
 
 }  // namespace rpvio

@@ -1,9 +1,11 @@
 #pragma once
-// Pose and plane states of the sliding-window estimator.
+// Pose and plane states of the sliding-window estimator, and what it publishes.
 #include <Eigen/Core>
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <string>
+#include <vector>
 
 namespace rpvio {
 
@@ -24,5 +26,26 @@ struct PlaneEstimate {
 };
 
 using PlaneEstimates = std::map<int, PlaneEstimate>;
+
+struct ResetEvent {
+  double t = 0;
+  std::string cause;
+};
+
+class PlanesMap;
+
+/// Published by the estimator module when the run ends, after the map is finished (the window's
+/// planes flushed, duplicates merged, the batch refinement run).
+struct EstimatorSummary {
+  const PlanesMap* planes_map = nullptr;
+  std::vector<StateEstimate> refined_trajectory;  // keyframes; empty without a refinement
+  std::string refinement_report;                  // "" if it did not run
+  double refinement_s = 0;
+  double initialized_at = -1;  // time of the first pose, -1 if never
+  double time_offset_s = 0;
+  std::string time_offset_note;
+  std::vector<ResetEvent> resets;
+  std::string status;  // the last status with its figures (why it is not tracking)
+};
 
 }  // namespace rpvio

@@ -30,6 +30,7 @@
 
 #include "common/options.h"
 #include "common/sensor_types.h"
+#include "mrpt_modules/core/run_messages.h"
 #include "mrpt_modules/estimator/batch_refinement.h"
 #include "mrpt_modules/estimator/estimator_types.h"
 #include "mrpt_modules/estimator/feature_manager.h"
@@ -163,19 +164,6 @@ struct EstimatorOptions {
   void validate(const OptionsLoader& loader) const;
   /// The first initializer's options (the others are variants of it).
   InitializerOptions initializerOptions() const;
-};
-
-struct ResetEvent {
-  double t = 0;
-  std::string cause;
-};
-
-/// What the last addFrame did (for statistics).
-struct FrameReport {
-  std::string state;  // "initializing", "tracking", "reset"
-  double optimization_ms = 0;
-  size_t features = 0;  // features in use in the newest frame
-  size_t planes = 0;    // planes with homography factors
 };
 
 class SlidingWindowEstimator {

@@ -1,15 +1,22 @@
 #include "mrpt_modules/frontend/feature_tracker_module.h"
 
+#include <mrpt/core/initializer.h>
+
 #include <chrono>
+
+#include "mrpt_modules/core/run_messages.h"
 
 #include "rawlog_io/rawlog_labels.h"
 #include "rawlog_io/rawlog_reader.h"
 
 IMPLEMENTS_MRPT_OBJECT(FeatureTrackerModule, rpvio::Module, rpvio)
 
-namespace rpvio {
+// Registered with MRPT RTTI when the program loads, so a config can name it.
+MRPT_INITIALIZER(register_FeatureTrackerModule) {
+  mrpt::rtti::registerClass(CLASS_ID(rpvio::FeatureTrackerModule));
+}
 
-void registerFrontendModules() { mrpt::rtti::registerClass(CLASS_ID(FeatureTrackerModule)); }
+namespace rpvio {
 
 void FeatureTrackerModule::initialize(const IniFile& config, const std::string& section,
                                       PipelineContext& context) {
@@ -30,12 +37,6 @@ cv::Mat FeatureTrackerModule::timedLoad(const ObservationMessage& m) {
   load_ms_ +=
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return image;
-}
-
-double FeatureTrackerModule::takeLoadMs() {
-  const double ms = load_ms_;
-  load_ms_ = 0;
-  return ms;
 }
 
 void FeatureTrackerModule::onImage(const ObservationMessage& m) {
@@ -69,7 +70,8 @@ void FeatureTrackerModule::process(double t) {
   pending_masks_.erase(pending_masks_.begin(), pending_masks_.upper_bound(t));
   for (const auto& w : tracker_->takeWarnings())
     MRPT_LOG_WARN_STREAM("t=" << timeText(t) << ": " << w);
-  ++frames_published_;
+  bus_->publish(FrameDecoding{t, load_ms_});
+  load_ms_ = 0;
   bus_->publish(frame);
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // Pipeline module around FeatureTracker: consumes CAM0 (and PLANE_MASK when use_masks), pairs an
 // image with the mask of the same timestamp (either arriving first) and publishes a FeatureFrame
-// per image. Options: section [FeatureTracker] (see TrackerOptions).
+// per image, after a FrameDecoding with the time its files took to decode. Options: section
+// [FeatureTrackerModule] (see TrackerOptions).
 #include <map>
 #include <memory>
 
@@ -17,9 +18,6 @@ class FeatureTrackerModule : public Module {
   void initialize(const IniFile& config, const std::string& section,
                   PipelineContext& context) override;
   void finish() override;
-  size_t framesPublished() const { return frames_published_; }
-  /// Milliseconds spent reading and decoding images and masks since the previous call.
-  double takeLoadMs();
 
  private:
   void onImage(const ObservationMessage& message);
@@ -31,11 +29,7 @@ class FeatureTrackerModule : public Module {
   const Bus* bus_ = nullptr;
   bool use_masks_ = true;
   std::map<double, cv::Mat> pending_images_, pending_masks_;
-  size_t frames_published_ = 0;
-  double load_ms_ = 0;
+  double load_ms_ = 0;  // reading and decoding images and masks since the last frame
 };
-
-/// Registers the front-end module classes with MRPT RTTI (call once before building pipelines).
-void registerFrontendModules();
 
 }  // namespace rpvio

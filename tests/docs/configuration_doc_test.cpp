@@ -70,8 +70,6 @@ void expectSameKeys(const SectionKeys& documented, const SectionKeys& code,
 }
 
 TEST(ConfigurationDoc, ModuleOptionsAreTheLoadableOnes) {
-  registerFrontendModules();
-  registerEstimatorModules();
   // Every module of every mode: the keys of the effective configuration are the loadable ones
   // (a key absent from it is refused as unknown).
   SectionKeys code;

@@ -13,8 +13,6 @@ namespace rpvio {
 namespace {
 
 TEST(Pipeline, RpvioConfigTracksASimulatedRawlog) {
-  registerFrontendModules();
-  registerEstimatorModules();
   test::TempDir dir;
   sim::SimConfig config;
   config.duration = 1.0;
@@ -37,7 +35,6 @@ TEST(Pipeline, RpvioConfigTracksASimulatedRawlog) {
 }
 
 TEST(Pipeline, UnknownModuleIsABadConfig) {
-  registerFrontendModules();
   test::TempDir dir;
   test::writeText(dir.file("bad.ini"), "[Pipeline]\nmodules = FeatureTrackerModule, Nonsense\n");
   try {
@@ -51,8 +48,6 @@ TEST(Pipeline, UnknownModuleIsABadConfig) {
 
 /// The InputError text of building a pipeline from `config_text` ("" when it builds).
 std::string pipelineError(const test::TempDir& dir, const std::string& config_text) {
-  registerFrontendModules();
-  registerEstimatorModules();
   test::writeText(dir.file("mode.ini"), config_text);
   try {
     Pipeline(dir.file("mode.ini"), Calibration{});
@@ -86,8 +81,6 @@ TEST(Pipeline, UnknownKeyIsABadConfigNamingItsLine) {
 }
 
 TEST(Pipeline, EffectiveConfigHasEveryKeyAndReadsBackToItself) {
-  registerFrontendModules();
-  registerEstimatorModules();
   test::TempDir dir;
   for (const char* mode : {"vins-mono", "mask-vins", "rpvio-single", "rpvio-multi"}) {
     const Pipeline pipeline(std::string(RPVIO_SOURCE_DIR) + "/config/" + mode + ".ini",

@@ -1,0 +1,140 @@
+#include "mrpt_modules/outputs/run_statistics_module.h"
+
+#include <mrpt/core/initializer.h>
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+
+#include "common/atomic_file.h"
+#include "common/json_text.h"
+#include "mrpt_modules/core/feature_frame.h"
+#include "planes_map/planes_map.h"
+
+IMPLEMENTS_MRPT_OBJECT(RunStatisticsModule, rpvio::Module, rpvio)
+
+// Registered with MRPT RTTI when the program loads, so a config can name it.
+MRPT_INITIALIZER(register_RunStatisticsModule) {
+  mrpt::rtti::registerClass(CLASS_ID(rpvio::RunStatisticsModule));
+}
+
+namespace rpvio {
+
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[static_cast<size_t>(q * static_cast<double>(v.size() - 1))];
+}
+
+double peakMemoryMb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // kB on Linux
+}
+
+namespace {
+
+/// `[{"t": 12.3, "cause": "..."}, ...]`
+std::string resetCausesJson(const std::vector<ResetEvent>& resets) {
+  std::ostringstream out;
+  out << "[";
+  for (size_t k = 0; k < resets.size(); ++k)
+    out << (k ? ", " : "") << "{\"t\": " << resets[k].t
+        << ", \"cause\": " << jsonString(resets[k].cause) << "}";
+  out << "]";
+  return out.str();
+}
+
+}  // namespace
+
+void RunStatisticsModule::initialize(const IniFile&, const std::string& section,
+                                     PipelineContext& context) {
+  output_dir_ = context.output_dir;
+  start_ = frame_start_ = Clock::now();
+  context.bus.subscribe<RunStart>(
+      [this](const RunStart&) { start_ = frame_start_ = Clock::now(); });
+  context.bus.subscribe<FrameDecoding>([this](const FrameDecoding& d) { load_ms_ += d.load_ms; });
+  context.bus.subscribe<EstimatorFrame>(
+      [this](const EstimatorFrame& e) { reports_.push_back(e.report); });
+  context.bus.subscribe<FeatureFrame>([this](const FeatureFrame& f) { onFrame(f.t); });
+  context.bus.subscribe<StateEstimate>([this](const StateEstimate&) { ++poses_; });
+  context.bus.subscribe<RunEnd>([this](const RunEnd& e) { end_ = e; });
+  context.bus.subscribe<EstimatorSummary>([this](const EstimatorSummary& s) { estimator_ = s; });
+  setOptionsText("[" + section + "]\n");
+}
+
+void RunStatisticsModule::onFrame(double t) {
+  const auto now = Clock::now();
+  double estimator_ms = 0;
+  for (; reports_counted_ < reports_.size(); ++reports_counted_)
+    estimator_ms += reports_[reports_counted_].optimization_ms;
+  rows_.push_back({t, std::chrono::duration<double, std::milli>(now - frame_start_).count(),
+                   load_ms_, estimator_ms});
+  load_ms_ = 0;
+  frame_start_ = now;
+}
+
+void RunStatisticsModule::finish() {
+  if (!output_dir_.empty()) write(std::chrono::duration<double>(Clock::now() - start_).count());
+}
+
+void RunStatisticsModule::write(double wall) const {
+  const auto path = [&](const char* name) {
+    return (std::filesystem::path(output_dir_) / name).string();
+  };
+  std::vector<double> total_ms, optimization_ms, frontend_ms, load_ms, processing_ms;
+  writeFileAtomically(path("stats.csv"), [&](std::ostream& s) {
+    s << "t,load_ms,frontend_ms,optimization_ms,total_ms,features,planes,state\n";
+    s << std::fixed;
+    for (size_t k = 0; k < rows_.size(); ++k) {
+      const FrameReport report = k < reports_.size() ? reports_[k] : FrameReport{"no estimator"};
+      total_ms.push_back(rows_[k].total_ms);
+      load_ms.push_back(rows_[k].load_ms);
+      processing_ms.push_back(std::max(0.0, rows_[k].total_ms - rows_[k].load_ms));
+      optimization_ms.push_back(report.optimization_ms);
+      frontend_ms.push_back(std::max(0.0, processing_ms.back() - rows_[k].estimator_ms));
+      s << std::setprecision(6) << rows_[k].t << std::setprecision(3) << "," << load_ms.back()
+        << "," << frontend_ms.back() << "," << rows_[k].estimator_ms << "," << total_ms.back()
+        << "," << report.features << "," << report.planes << "," << report.state << "\n";
+    }
+  });
+  const double sequence_s = rows_.size() < 2 ? 0 : rows_.back().t - rows_.front().t;
+  const EstimatorSummary e = estimator_.value_or(EstimatorSummary{});
+  const double odometry_wall = wall - e.refinement_s;  // the refinement runs after the rawlog
+  const size_t map_planes = e.planes_map ? e.planes_map->confirmedPlanes().size() : 0;
+  const size_t tentative_planes = e.planes_map ? e.planes_map->planes().size() - map_planes : 0;
+  JsonObject summary;
+  summary.flag("complete", end_.complete)
+      .text("input_error", end_.input_error)
+      .number("frames", static_cast<double>(rows_.size()))
+      .number("poses", static_cast<double>(poses_))
+      .number("initialized_at", e.initialized_at)
+      .number("time_offset_s", e.time_offset_s)
+      .text("time_offset_note", e.time_offset_note)
+      .number("resets", static_cast<double>(e.resets.size()))
+      .raw("reset_causes", resetCausesJson(e.resets))
+      .number("total_ms_median", percentile(total_ms, 0.5))
+      .number("total_ms_p95", percentile(total_ms, 0.95))
+      .number("load_ms_median", percentile(load_ms, 0.5))
+      .number("processing_ms_median", percentile(processing_ms, 0.5))
+      .number("processing_ms_p95", percentile(processing_ms, 0.95))
+      .number("frontend_ms_median", percentile(frontend_ms, 0.5))
+      .number("frontend_ms_p95", percentile(frontend_ms, 0.95))
+      .number("optimization_ms_median", percentile(optimization_ms, 0.5))
+      .number("optimization_ms_p95", percentile(optimization_ms, 0.95))
+      .number("wall_s", wall)
+      .number("sequence_s", sequence_s)
+      .number("real_time_factor", odometry_wall > 0 ? sequence_s / odometry_wall : 0)
+      .number("peak_memory_mb", peakMemoryMb())
+      .number("map_planes", static_cast<double>(map_planes))
+      .number("tentative_planes", static_cast<double>(tentative_planes))
+      .number("refinement_s", e.refinement_s)
+      .text("refinement", e.refinement_report)
+      .text("status", estimator_ ? e.status : "no estimator");
+  writeFileAtomically(path("summary.json"), [&](std::ostream& s) { s << summary.str(); });
+}
+
+}  // namespace rpvio
