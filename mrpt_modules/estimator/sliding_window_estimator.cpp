@@ -32,10 +32,12 @@ constexpr size_t kMinPlanePoints = 10;
 constexpr double kMaxPlaneRmsPerDepth = 0.04;
 constexpr double kMinDepth = 0.1, kMaxDepth = 100;
 
-/// Appends samples, skipping those not after the last one already there.
-void appendSamples(std::vector<ImuSample>& to, const std::vector<ImuSample>& from) {
-  for (const auto& s : from)
-    if (to.empty() || s.t > to.back().t) to.push_back(s);
+/// The noise densities and random walks of `noise` times `factor`.
+ImuNoise inflatedNoise(ImuNoise noise, double factor) {
+  for (double* density : {&noise.accel_noise_density, &noise.gyro_noise_density,
+                          &noise.accel_random_walk, &noise.gyro_random_walk})
+    *density *= factor;
+  return noise;
 }
 
 }  // namespace
@@ -43,6 +45,15 @@ void appendSamples(std::vector<ImuSample>& to, const std::vector<ImuSample>& fro
 void EstimatorOptions::validate(const OptionsLoader& loader) const {
   loader.require(window_size >= 3, "window_size", "must be at least 3");
   loader.require(max_iterations >= 0, "max_iterations", "must be 0 or more");
+}
+
+ImuLinkOptions EstimatorOptions::imuLinkOptions() const {
+  ImuLinkOptions o;
+  o.max_step_s = max_imu_step_s;
+  o.gap_noise_inflation = imu_gap_noise_inflation;
+  o.min_saturated_accel = min_saturated_accel;
+  o.min_saturated_gyro = min_saturated_gyro;
+  return o;
 }
 
 InitializerOptions EstimatorOptions::initializerOptions() const {
@@ -59,6 +70,8 @@ SlidingWindowEstimator::SlidingWindowEstimator(const Calibration& calibration,
                                                const EstimatorOptions& options)
     : calib_(calibration),
       options_(options),
+      window_imu_noise_(inflatedNoise(calibration.imu, options.imu_noise_inflation)),
+      imu_link_(window_imu_noise_, calibration.imu.gravity, options.imuLinkOptions()),
       initializer_(calibration, options.initializerOptions()),
       fallback_initializer_(calibration,
                             [&] {
@@ -77,84 +90,8 @@ SlidingWindowEstimator::SlidingWindowEstimator(const Calibration& calibration,
   initializer_.setMinLoggingLevel(mrpt::system::LVL_WARN);  // the estimator reports the status
   reinitializer_.setMinLoggingLevel(mrpt::system::LVL_WARN);
   fallback_initializer_.setMinLoggingLevel(mrpt::system::LVL_WARN);
-  window_imu_noise_ = calib_.imu;
-  for (double* density :
-       {&window_imu_noise_.accel_noise_density, &window_imu_noise_.gyro_noise_density,
-        &window_imu_noise_.accel_random_walk, &window_imu_noise_.gyro_random_walk})
-    *density *= options_.imu_noise_inflation;
   setPoseBlock(calib_.T_BC, mount_);
   time_offset_ = calib_.time_offset;
-}
-
-SlidingWindowEstimator::ImuDefects SlidingWindowEstimator::imuDefects(
-    const std::vector<ImuSample>& samples, double t0, double t1) const {
-  ImuDefects d;
-  d.gap = samples.empty();
-  if (d.gap) return d;
-  double longest_step = t1 - samples.back().t;
-  for (size_t k = 1; k < samples.size(); ++k)
-    longest_step = std::max(longest_step, samples[k].t - std::max(t0, samples[k - 1].t));
-  d.gap = longest_step > options_.max_imu_step_s;
-  // A saturated axis repeats its limit exactly; noise never repeats a value three times.
-  auto stuck = [&](size_t k, const Eigen::Vector3d ImuSample::*sensor, int axis, double floor) {
-    const double v = (samples[k].*sensor)[axis];
-    return std::abs(v) >= floor && v == (samples[k - 1].*sensor)[axis] &&
-           v == (samples[k - 2].*sensor)[axis];
-  };
-  for (size_t k = 2; k < samples.size(); ++k)
-    for (int axis = 0; axis < 3; ++axis) {
-      d.accel_saturated |= stuck(k, &ImuSample::accel, axis, options_.min_saturated_accel);
-      d.gyro_saturated |= stuck(k, &ImuSample::gyro, axis, options_.min_saturated_gyro);
-    }
-  return d;
-}
-
-std::shared_ptr<ImuPreintegration> SlidingWindowEstimator::preintegrate(
-    const std::vector<ImuSample>& samples, double t0, double t1, const double* speed_bias,
-    const ImuNoise* noise) const {
-  if (samples.empty() || t1 <= t0) return nullptr;
-  // Samples held constant over their interval; the first one is interpolated at t0 when the next
-  // sample lies after t0, the last one extended to t1.
-  ImuSample first = samples.front();
-  if (samples.size() > 1 && first.t < t0 && samples[1].t > t0) {
-    const double a = (t0 - first.t) / (samples[1].t - first.t);
-    first.accel = (1 - a) * first.accel + a * samples[1].accel;
-    first.gyro = (1 - a) * first.gyro + a * samples[1].gyro;
-  }
-  // An IMU gap (samples missing, the last one held over it) or a saturated sensor: the values are
-  // guesses, so the factor's noise is inflated (the sensor's, both over a gap) and the cameras
-  // carry the motion.
-  ImuNoise n = noise ? *noise : window_imu_noise_;
-  const ImuDefects defects = imuDefects(samples, t0, t1);
-  if (defects.gap || defects.accel_saturated)
-    n.accel_noise_density *= options_.imu_gap_noise_inflation;
-  if (defects.gap || defects.gyro_saturated)
-    n.gyro_noise_density *= options_.imu_gap_noise_inflation;
-  auto pre = std::make_shared<ImuPreintegration>(
-      first.accel, first.gyro, Eigen::Vector3d(speed_bias + 3), Eigen::Vector3d(speed_bias + 6), n);
-  double t = t0;
-  for (size_t k = 1; k < samples.size(); ++k) {
-    if (samples[k].t <= t) continue;
-    pre->push(samples[k].t - t, samples[k].accel, samples[k].gyro);
-    t = samples[k].t;
-  }
-  if (t1 > t) pre->push(t1 - t, samples.back().accel, samples.back().gyro);
-  return pre;
-}
-
-void SlidingWindowEstimator::predict(const Frame& from, Frame& to) const {
-  const ImuPreintegration& pre = *to.imu_from_previous;
-  const Eigen::Vector3d g(0, 0, -calib_.imu.gravity);
-  const double T = pre.sumDt();
-  const Eigen::Quaterniond q = poseRotation(from.pose);
-  const Eigen::Vector3d v(from.speed_bias);
-  const Eigen::Vector3d p = posePosition(from.pose) + v * T + 0.5 * g * T * T + q * pre.deltaP();
-  const Eigen::Quaterniond q_new = (q * pre.deltaQ()).normalized();
-  const Eigen::Vector3d v_new = v + g * T + q * pre.deltaV();
-  const double pose[7] = {p.x(), p.y(), p.z(), q_new.x(), q_new.y(), q_new.z(), q_new.w()};
-  std::copy(pose, pose + 7, to.pose);
-  for (int i = 0; i < 3; ++i) to.speed_bias[i] = v_new[i];
-  std::copy(from.speed_bias + 3, from.speed_bias + 9, to.speed_bias + 3);
 }
 
 Eigen::Isometry3d SlidingWindowEstimator::camera(uint64_t frame_id) const {
@@ -400,7 +337,7 @@ void SlidingWindowEstimator::marginalizeOldest() {
   // An IMU factor over a gap or saturated samples is left out of the prior: its model error,
   // frozen by the linearization, pulled the accelerometer bias away within a second (the
   // simulated 0.2 s gap ended in a reset).
-  const bool imu_linked = !imuDefects(next.imu, oldest.features.t, next.features.t).any();
+  const bool imu_linked = !imu_link_.defects(next.imu, oldest.features.t, next.features.t).any();
   if (imu_linked)
     marginalizer.addFactor(std::make_unique<ImuFactor>(next.imu_from_previous, g), nullptr,
                            {oldest.pose, oldest.speed_bias, next.pose, next.speed_bias});
@@ -471,7 +408,7 @@ void SlidingWindowEstimator::dropSecondNewest() {
   appendSamples(merged, newest.imu);
   newest.imu = merged;
   newest.imu_from_previous =
-      preintegrate(merged, before.features.t, newest.features.t, before.speed_bias);
+      imu_link_.preintegrate(merged, before.features.t, newest.features.t, before.speed_bias);
   features_.removeFrame(dropped.id, cameraLookup());
   window_.erase(window_.end() - 2);
 }
@@ -514,7 +451,8 @@ void SlidingWindowEstimator::finishMap() {
     for (size_t k = 0; k < window_.size(); ++k) {
       const bool linked =
           k + 1 < window_.size() &&
-          !imuDefects(window_[k + 1]->imu, window_[k]->features.t, window_[k + 1]->features.t)
+          !imu_link_
+               .defects(window_[k + 1]->imu, window_[k]->features.t, window_[k + 1]->features.t)
                .any();
       archiveKeyframe(*window_[k], linked ? window_[k + 1].get() : nullptr);
     }
@@ -618,9 +556,10 @@ void SlidingWindowEstimator::tryInitialize() {
   const double* biases = last_good_ ? last_good_->speed_bias : zero;
   for (size_t k = 0; k < init_buffer_.size(); ++k) {
     frames.push_back(init_buffer_[k].first);
-    imu.push_back(k == 0 ? nullptr
-                         : preintegrate(init_buffer_[k].second, init_buffer_[k - 1].first.t,
-                                        frames.back().t, biases, &calib_.imu));
+    imu.push_back(k == 0
+                      ? nullptr
+                      : imu_link_.preintegrate(init_buffer_[k].second, init_buffer_[k - 1].first.t,
+                                               frames.back().t, biases, &calib_.imu));
     if (k > 0 && !imu.back()) return;  // a frame without IMU: wait for a clean window
   }
   InitializationResult init =
@@ -681,7 +620,7 @@ void SlidingWindowEstimator::tryInitialize() {
       for (size_t k = chosen[c - 1] + 1; k <= chosen[c]; ++k)
         appendSamples(f->imu, init_buffer_[k].second);
       f->imu_from_previous =
-          preintegrate(f->imu, window_.back()->features.t, f->features.t, f->speed_bias);
+          imu_link_.preintegrate(f->imu, window_.back()->features.t, f->features.t, f->speed_bias);
     }
     features_.addFrame(f->id, f->features);
     window_.push_back(std::move(f));
@@ -734,12 +673,12 @@ bool SlidingWindowEstimator::reconnect() {
   std::vector<ImuSample> samples;  // up to the first keyframe
   for (const ImuSample& sample : imu_since_good_)
     if (sample.t <= first.features.t) samples.push_back(sample);
-  to.imu_from_previous =
-      preintegrate(samples, last_good_->t, first.features.t, last_good_->speed_bias, &calib_.imu);
+  to.imu_from_previous = imu_link_.preintegrate(samples, last_good_->t, first.features.t,
+                                                last_good_->speed_bias, &calib_.imu);
   last_good_.reset();
   imu_since_good_.clear();
   if (!to.imu_from_previous) return false;
-  predict(from, to);
+  imu_link_.predict(from.pose, from.speed_bias, *to.imu_from_previous, to.pose, to.speed_bias);
   // Both worlds have z up: they differ by a yaw and a translation.
   const Eigen::Matrix3d M = poseRotation(to.pose).toRotationMatrix() *
                             poseRotation(first.pose).toRotationMatrix().transpose();
@@ -813,13 +752,15 @@ std::optional<StateEstimate> SlidingWindowEstimator::addFrame(
   f->id = next_frame_id_++;
   f->features = frame;
   f->imu = imu_since_previous;
-  f->imu_from_previous = preintegrate(f->imu, previous.features.t, frame.t, previous.speed_bias);
+  f->imu_from_previous =
+      imu_link_.preintegrate(f->imu, previous.features.t, frame.t, previous.speed_bias);
   if (!f->imu_from_previous) {
     reset("no IMU between frames");
     imu_since_good_ = imu_since_previous;
     return std::nullopt;
   }
-  predict(previous, *f);
+  imu_link_.predict(previous.pose, previous.speed_bias, *f->imu_from_previous, f->pose,
+                    f->speed_bias);
   double predicted[7];
   std::copy(f->pose, f->pose + 7, predicted);
   features_.addFrame(f->id, frame);

@@ -35,6 +35,7 @@
 #include "mrpt_modules/estimator/estimator_types.h"
 #include "mrpt_modules/estimator/feature_manager.h"
 #include "mrpt_modules/factors/marginalization.h"
+#include "mrpt_modules/imu/imu_link.h"
 #include "mrpt_modules/initialization/initializer.h"
 #include "planes_map/planes_map.h"
 
@@ -162,6 +163,7 @@ struct EstimatorOptions {
     RPVIO_OPTION(v, batch_refinement_max_keyframes);
   }
   void validate(const OptionsLoader& loader) const;
+  ImuLinkOptions imuLinkOptions() const;
   /// The first initializer's options (the others are variants of it).
   InitializerOptions initializerOptions() const;
 };
@@ -227,18 +229,6 @@ class SlidingWindowEstimator {
   /// yaw and translation that put its first keyframe on the IMU's dead reckoning.
   /// False (the window stays in a new world) when the IMU does not reach the first keyframe.
   bool reconnect();
-  struct ImuDefects {
-    bool gap = false;  // a step longer than max_imu_step_s
-    bool accel_saturated = false, gyro_saturated = false;
-    bool any() const { return gap || accel_saturated || gyro_saturated; }
-  };
-  /// What is wrong with samples covering [t0, t1], if anything.
-  ImuDefects imuDefects(const std::vector<ImuSample>& samples, double t0, double t1) const;
-  /// From t0 to t1, linearized at the biases of `speed_bias`; noise: the window's by default.
-  std::shared_ptr<ImuPreintegration> preintegrate(const std::vector<ImuSample>& samples, double t0,
-                                                  double t1, const double* speed_bias,
-                                                  const ImuNoise* noise = nullptr) const;
-  void predict(const Frame& from, Frame& to) const;
   Eigen::Isometry3d camera(uint64_t frame_id) const;
   CameraPoseLookup cameraLookup() const;
   bool inUse(const FeatureTrack& track) const;
@@ -267,6 +257,7 @@ class SlidingWindowEstimator {
   Calibration calib_;
   EstimatorOptions options_;
   ImuNoise window_imu_noise_;  // calib_.imu inflated for the window's factors
+  ImuLink imu_link_;
   Initializer initializer_;
   Initializer fallback_initializer_;  // when the configured method's geometry fails
   Initializer reinitializer_;         // after a reset
