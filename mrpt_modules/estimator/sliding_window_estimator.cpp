@@ -42,56 +42,15 @@ ImuNoise inflatedNoise(ImuNoise noise, double factor) {
 
 }  // namespace
 
-void EstimatorOptions::validate(const OptionsLoader& loader) const {
-  loader.require(window_size >= 3, "window_size", "must be at least 3");
-  loader.require(max_iterations >= 0, "max_iterations", "must be 0 or more");
-}
-
-ImuLinkOptions EstimatorOptions::imuLinkOptions() const {
-  ImuLinkOptions o;
-  o.max_step_s = max_imu_step_s;
-  o.gap_noise_inflation = imu_gap_noise_inflation;
-  o.min_saturated_accel = min_saturated_accel;
-  o.min_saturated_gyro = min_saturated_gyro;
-  return o;
-}
-
-InitializerOptions EstimatorOptions::initializerOptions() const {
-  InitializerOptions o;
-  o.method = initializer;
-  o.min_window_s = init_window_s;
-  o.min_parallax_px = init_parallax_px;
-  o.virtual_focal = virtual_focal;
-  o.pixel_sigma = pixel_sigma;
-  return o;
-}
-
 SlidingWindowEstimator::SlidingWindowEstimator(const Calibration& calibration,
                                                const EstimatorOptions& options)
     : calib_(calibration),
       options_(options),
       window_imu_noise_(inflatedNoise(calibration.imu, options.imu_noise_inflation)),
       imu_link_(window_imu_noise_, calibration.imu.gravity, options.imuLinkOptions()),
-      initializer_(calibration, options.initializerOptions()),
-      fallback_initializer_(calibration,
-                            [&] {
-                              InitializerOptions o = options.initializerOptions();
-                              o.method = InitializerMethod::kEssentialMatrix;
-                              return o;
-                            }()),
-      reinitializer_(calibration,
-                     [&] {
-                       InitializerOptions o = options.initializerOptions();
-                       o.max_relative_scale_sigma = options.reinit_max_scale_sigma;
-                       o.method = options.reinitializer;
-                       return o;
-                     }()),
+      bootstrapper_(calibration, options, imu_link_),
       planes_map_(options.planes_map) {
-  initializer_.setMinLoggingLevel(mrpt::system::LVL_WARN);  // the estimator reports the status
-  reinitializer_.setMinLoggingLevel(mrpt::system::LVL_WARN);
-  fallback_initializer_.setMinLoggingLevel(mrpt::system::LVL_WARN);
   setPoseBlock(calib_.T_BC, mount_);
-  time_offset_ = calib_.time_offset;
 }
 
 Eigen::Isometry3d SlidingWindowEstimator::camera(uint64_t frame_id) const {
@@ -500,146 +459,29 @@ void SlidingWindowEstimator::refineBatch() {
   refined_trajectory_ = keyframe_archive_.trajectory();
 }
 
-double SlidingWindowEstimator::significantTimeOffset(const InitializationResult& init) {
-  time_offset_estimated_ = true;
-  std::vector<double> t;
-  std::vector<Eigen::Matrix3d> R;
-  for (size_t k = 0; k < init_buffer_.size(); ++k) {
-    t.push_back(init_buffer_[k].first.t);
-    R.push_back(init.T_w_b[k].linear());
-  }
-  std::string why;
-  const auto e =
-      estimateTimeOffset(t, R, initBufferSamples(), init.bg, options_.max_time_offset_s, &why);
-  if (!e) {
-    time_offset_note_ = "time offset not estimated: " + why;
-    return 0;
-  }
-  const bool significant =
-      std::abs(e->td) >= options_.min_time_offset_s && std::abs(e->td) > 3 * e->sigma;
-  char text[160];
-  std::snprintf(text, sizeof text,
-                "time offset %+.1f ms (sigma %.1f ms, %zu frames, fit %.4f deg)%s", 1e3 * e->td,
-                1e3 * e->sigma, e->frames, e->rms_deg, significant ? "" : ": not applied");
-  time_offset_note_ = text;
-  return significant ? e->td : 0;
-}
-
-std::vector<ImuSample> SlidingWindowEstimator::initBufferSamples() const {
-  std::vector<ImuSample> samples;
-  for (const auto& [frame, imu] : init_buffer_) appendSamples(samples, imu);
-  return samples;
-}
-
-void SlidingWindowEstimator::moveInitBuffer(double dt) {
-  time_offset_ += dt;
-  const std::vector<ImuSample> samples = initBufferSamples();
-  for (auto& [frame, imu] : init_buffer_) frame.t += dt;
-  // Each frame's samples dealt out again: from the last one at or before the previous frame.
-  for (size_t k = 0; k < init_buffer_.size(); ++k) {
-    const double from = k == 0 ? -INFINITY : init_buffer_[k - 1].first.t;
-    std::vector<ImuSample>& imu = init_buffer_[k].second;
-    imu.clear();
-    for (size_t j = 0; j < samples.size(); ++j)
-      if (samples[j].t <= init_buffer_[k].first.t &&
-          (samples[j].t > from || (j + 1 < samples.size() && samples[j + 1].t > from)))
-        imu.push_back(samples[j]);
-  }
-}
-
-void SlidingWindowEstimator::tryInitialize() {
-  std::vector<FeatureFrame> frames;
-  std::vector<std::shared_ptr<ImuPreintegration>> imu;
-  // Preintegrations linearized at the last good biases after a reset, at zero before the first
-  // initialization.
-  const double zero[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-  const double* biases = last_good_ ? last_good_->speed_bias : zero;
-  for (size_t k = 0; k < init_buffer_.size(); ++k) {
-    frames.push_back(init_buffer_[k].first);
-    imu.push_back(k == 0
-                      ? nullptr
-                      : imu_link_.preintegrate(init_buffer_[k].second, init_buffer_[k - 1].first.t,
-                                               frames.back().t, biases, &calib_.imu));
-    if (k > 0 && !imu.back()) return;  // a frame without IMU: wait for a clean window
-  }
-  InitializationResult init =
-      (last_good_ ? reinitializer_ : initializer_).tryInitialize(frames, imu);
-  if (!last_good_ && init.status == InitStatus::kGeometryFailed && options_.init_fallback &&
-      options_.initializer != InitializerMethod::kEssentialMatrix) {
-    if (first_geometry_failure_t_ < 0) first_geometry_failure_t_ = frames.back().t;
-    if (frames.back().t - first_geometry_failure_t_ >= options_.init_fallback_after_s)
-      init = fallback_initializer_.tryInitialize(frames, imu);
-  }
-  status_ = init.ok() ? "tracking" : toString(init.status);
-  status_detail_ = init.reason;
-  if (!init.ok()) return;
-  if (options_.estimate_time_offset && !time_offset_estimated_) {
-    // A significant camera-IMU offset: the same window again, on the corrected frame times; kept
-    // only if it initializes there.
-    if (const double td = significantTimeOffset(init); td != 0) {
-      const auto original = init_buffer_;
-      const double original_offset = time_offset_;
-      moveInitBuffer(td);
-      tryInitialize();
-      if (initialized_) {
-        time_offset_note_ += ": frame times corrected";
-        return;
-      }
-      init_buffer_ = original;
-      time_offset_ = original_offset;
-      time_offset_note_ += ": not applied (no initialization on the corrected times)";
-      status_ = "tracking";
-      status_detail_ = init.reason;
-    }
-  }
-  // Keyframes: evenly spaced over the initialization window, ending at its newest frame.
-  const size_t n = frames.size();
-  const size_t step =
-      std::max<size_t>(1, (n - 1 + options_.window_size - 2) / (options_.window_size - 1));
-  std::vector<size_t> chosen;
-  for (long k = static_cast<long>(n) - 1; k >= 0; k -= static_cast<long>(step))
-    chosen.insert(chosen.begin(), static_cast<size_t>(k));
+void SlidingWindowEstimator::startWindow(const InitializedWindow& init) {
   window_.clear();
   features_.clear();
   prior_.reset();
-  for (size_t c = 0; c < chosen.size(); ++c) {
+  for (const auto& keyframe : init.keyframes) {
     auto f = std::make_unique<Frame>();
     f->id = next_frame_id_++;
-    f->features = frames[chosen[c]];
-    const Eigen::Isometry3d& T = init.T_w_b[chosen[c]];
-    const Eigen::Quaterniond q(T.linear());
-    const double pose[7] = {
-        T.translation().x(), T.translation().y(), T.translation().z(), q.x(), q.y(), q.z(), q.w()};
-    std::copy(pose, pose + 7, f->pose);
-    for (int i = 0; i < 3; ++i) {
-      f->speed_bias[i] = init.v_w[chosen[c]][i];
-      f->speed_bias[3 + i] = init.ba[i];
-      f->speed_bias[6 + i] = init.bg[i];
-    }
-    if (c > 0) {
-      for (size_t k = chosen[c - 1] + 1; k <= chosen[c]; ++k)
-        appendSamples(f->imu, init_buffer_[k].second);
+    f->features = keyframe.features;
+    std::copy(keyframe.pose, keyframe.pose + 7, f->pose);
+    std::copy(keyframe.speed_bias, keyframe.speed_bias + 9, f->speed_bias);
+    if (!window_.empty()) {
+      f->imu = keyframe.imu;
       f->imu_from_previous =
           imu_link_.preintegrate(f->imu, window_.back()->features.t, f->features.t, f->speed_bias);
     }
     features_.addFrame(f->id, f->features);
     window_.push_back(std::move(f));
   }
-  // The initializer's depths (camera of the feature's first frame in its window) moved to the
-  // anchors of this window.
-  std::map<uint64_t, size_t> init_index;
-  for (size_t c = 0; c < chosen.size(); ++c) init_index[window_[c]->id] = chosen[c];
+  // The initializer's points at the depths of this window's anchors.
   for (auto& [id, track] : features_.tracks()) {
-    const auto depth = init.depths.find(id);
-    if (depth == init.depths.end()) continue;
-    const FeatureFrame& first = frames[depth->second.frame];
-    const auto seen = std::find_if(first.features.begin(), first.features.end(),
-                                   [&](const TrackedFeature& f) { return f.id == id; });
-    if (seen == first.features.end()) continue;
-    const Eigen::Vector3d X_w =
-        init.T_w_b[depth->second.frame] * calib_.T_BC *
-        (depth->second.depth * Eigen::Vector3d(seen->normalized.x(), seen->normalized.y(), 1));
-    const Eigen::Vector3d X_c = camera(track.observations.front().frame).inverse() * X_w;
+    const auto point = init.points.find(id);
+    if (point == init.points.end()) continue;
+    const Eigen::Vector3d X_c = camera(track.observations.front().frame).inverse() * point->second;
     if (X_c.z() < kMinDepth || X_c.z() > kMaxDepth) continue;
     track.inv_depth[0] = 1.0 / X_c.z();
     track.triangulated = true;
@@ -652,9 +494,13 @@ void SlidingWindowEstimator::tryInitialize() {
     e.visit = ++plane_visits_;
     planes_[mask] = e;
   }
-  // A new world: the archived keyframes are in another one.
-  if (!(last_good_ && reconnect())) keyframe_archive_.clear();
-  init_buffer_.clear();
+  // Re-initialized soon enough after a reset: into the old world; else a new world, and the
+  // archived keyframes are in another one.
+  if (const auto shift =
+          bootstrapper_.reconnect(window_.front()->features.t, window_.front()->pose))
+    moveWindow(*shift);
+  else
+    keyframe_archive_.clear();
   initialized_ = true;
   last_seen_features_t_ = window_.back()->features.t;
   choosePlanes();
@@ -664,44 +510,24 @@ void SlidingWindowEstimator::tryInitialize() {
   rejectDepthOutliers();
 }
 
-bool SlidingWindowEstimator::reconnect() {
-  Frame from, to;
-  from.features.t = last_good_->t;
-  std::copy(last_good_->pose, last_good_->pose + 7, from.pose);
-  std::copy(last_good_->speed_bias, last_good_->speed_bias + 9, from.speed_bias);
-  Frame& first = *window_.front();
-  std::vector<ImuSample> samples;  // up to the first keyframe
-  for (const ImuSample& sample : imu_since_good_)
-    if (sample.t <= first.features.t) samples.push_back(sample);
-  to.imu_from_previous = imu_link_.preintegrate(samples, last_good_->t, first.features.t,
-                                                last_good_->speed_bias, &calib_.imu);
-  last_good_.reset();
-  imu_since_good_.clear();
-  if (!to.imu_from_previous) return false;
-  imu_link_.predict(from.pose, from.speed_bias, *to.imu_from_previous, to.pose, to.speed_bias);
-  // Both worlds have z up: they differ by a yaw and a translation.
-  const Eigen::Matrix3d M = poseRotation(to.pose).toRotationMatrix() *
-                            poseRotation(first.pose).toRotationMatrix().transpose();
-  const Eigen::Quaterniond yaw(
-      Eigen::AngleAxisd(std::atan2(M(1, 0), M(0, 0)), Eigen::Vector3d::UnitZ()));
-  const Eigen::Vector3d shift = posePosition(to.pose) - yaw * posePosition(first.pose);
+void SlidingWindowEstimator::moveWindow(const WorldShift& s) {
   for (auto& f : window_) {
-    const Eigen::Vector3d p = yaw * posePosition(f->pose) + shift;
-    const Eigen::Quaterniond q = (yaw * poseRotation(f->pose)).normalized();
-    const Eigen::Vector3d v = yaw * Eigen::Vector3d(f->speed_bias);
+    const Eigen::Vector3d p = s.yaw * posePosition(f->pose) + s.shift;
+    const Eigen::Quaterniond q = (s.yaw * poseRotation(f->pose)).normalized();
+    const Eigen::Vector3d v = s.yaw * Eigen::Vector3d(f->speed_bias);
     const double pose[7] = {p.x(), p.y(), p.z(), q.x(), q.y(), q.z(), q.w()};
     std::copy(pose, pose + 7, f->pose);
     std::copy(v.data(), v.data() + 3, f->speed_bias);
   }
   for (auto& [mask, e] : planes_) {
-    const Eigen::Vector3d n = yaw * Eigen::Vector3d(e.normal);
+    const Eigen::Vector3d n = s.yaw * Eigen::Vector3d(e.normal);
     std::copy(n.data(), n.data() + 3, e.normal);
-    e.distance[0] += n.dot(shift);
+    e.distance[0] += n.dot(s.shift);
   }
-  return true;
 }
 
-void SlidingWindowEstimator::reset(const std::string& cause) {
+void SlidingWindowEstimator::reset(const std::string& cause,
+                                   const std::vector<ImuSample>& imu_since_good) {
   reset_log_.push_back({window_.empty() ? 0 : window_.back()->features.t, cause});
   status_ = "reset: " + cause;
   status_detail_ = status_;
@@ -711,10 +537,9 @@ void SlidingWindowEstimator::reset(const std::string& cause) {
   window_.clear();
   features_.clear();
   prior_.reset();
-  init_buffer_.clear();
   planes_.clear();
   used_planes_.clear();
-  first_geometry_failure_t_ = -1;
+  bootstrapper_.restart(imu_since_good, status_);
 }
 
 std::optional<StateEstimate> SlidingWindowEstimator::addFrame(
@@ -727,17 +552,10 @@ std::optional<StateEstimate> SlidingWindowEstimator::addFrame(
   report_ = FrameReport{};
   if (!initialized_) {
     report_.state = "initializing";
-    if (last_good_) {
-      appendSamples(imu_since_good_, imu_since_previous);
-      if (frame.t - last_good_->t > options_.max_reconnect_s) {
-        last_good_.reset();  // too long: the next initialization starts a new world
-        imu_since_good_.clear();
-      }
-    }
-    if (frame.features.empty()) init_buffer_.clear();  // no structure can span a blank frame
-    init_buffer_.emplace_back(frame, imu_since_previous);
-    if (init_buffer_.size() > options_.init_window_frames) init_buffer_.pop_front();
-    tryInitialize();
+    const auto init = bootstrapper_.addFrame(frame, imu_since_previous);
+    status_ = bootstrapper_.status();
+    status_detail_ = bootstrapper_.statusDetail();
+    if (init) startWindow(*init);
     report_.optimization_ms = elapsed_ms();
     if (!initialized_) return std::nullopt;
     report_.state = "tracking";
@@ -755,8 +573,7 @@ std::optional<StateEstimate> SlidingWindowEstimator::addFrame(
   f->imu_from_previous =
       imu_link_.preintegrate(f->imu, previous.features.t, frame.t, previous.speed_bias);
   if (!f->imu_from_previous) {
-    reset("no IMU between frames");
-    imu_since_good_ = imu_since_previous;
+    reset("no IMU between frames", imu_since_previous);
     return std::nullopt;
   }
   imu_link_.predict(previous.pose, previous.speed_bias, *f->imu_from_previous, f->pose,
@@ -777,8 +594,7 @@ std::optional<StateEstimate> SlidingWindowEstimator::addFrame(
   if (report_.features >= options_.min_features) last_seen_features_t_ = frame.t;
   const std::string why = failure(predicted);
   if (!why.empty()) {
-    reset(why);
-    imu_since_good_ = imu_since_previous;  // from the last good state (the previous frame) on
+    reset(why, imu_since_previous);  // the samples from the last good state (the previous frame) on
     report_.optimization_ms = elapsed_ms();
     return std::nullopt;
   }
@@ -786,9 +602,7 @@ std::optional<StateEstimate> SlidingWindowEstimator::addFrame(
   s.t = frame.t;
   std::copy(window_.back()->pose, window_.back()->pose + 7, s.pose);
   s.keyframe = keyframe;
-  last_good_ = GoodState{frame.t, {}, {}};
-  std::copy(window_.back()->pose, window_.back()->pose + 7, last_good_->pose);
-  std::copy(window_.back()->speed_bias, window_.back()->speed_bias + 9, last_good_->speed_bias);
+  bootstrapper_.setGoodState(frame.t, window_.back()->pose, window_.back()->speed_bias);
   if (!keyframe)
     dropSecondNewest();
   else if (window_.size() > options_.window_size + 1)

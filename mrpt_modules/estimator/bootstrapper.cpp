@@ -1,0 +1,219 @@
+#include "mrpt_modules/estimator/bootstrapper.h"
+
+#include <cmath>
+
+#include "mrpt_modules/factors/parameter_blocks.h"
+#include "mrpt_modules/initialization/time_offset.h"
+
+namespace rpvio {
+
+Bootstrapper::Bootstrapper(const Calibration& calibration, const EstimatorOptions& options,
+                           const ImuLink& imu_link)
+    : calib_(calibration),
+      options_(options),
+      imu_link_(imu_link),
+      initializer_(calibration, options.initializerOptions()),
+      fallback_initializer_(calibration,
+                            [&] {
+                              InitializerOptions o = options.initializerOptions();
+                              o.method = InitializerMethod::kEssentialMatrix;
+                              return o;
+                            }()),
+      reinitializer_(calibration,
+                     [&] {
+                       InitializerOptions o = options.initializerOptions();
+                       o.max_relative_scale_sigma = options.reinit_max_scale_sigma;
+                       o.method = options.reinitializer;
+                       return o;
+                     }()),
+      time_offset_(calibration.time_offset) {
+  initializer_.setMinLoggingLevel(mrpt::system::LVL_WARN);  // the estimator reports the status
+  reinitializer_.setMinLoggingLevel(mrpt::system::LVL_WARN);
+  fallback_initializer_.setMinLoggingLevel(mrpt::system::LVL_WARN);
+}
+
+std::optional<InitializedWindow> Bootstrapper::addFrame(
+    const FeatureFrame& frame, const std::vector<ImuSample>& imu_since_previous) {
+  if (last_good_) {
+    appendSamples(imu_since_good_, imu_since_previous);
+    if (frame.t - last_good_->t > options_.max_reconnect_s) {
+      last_good_.reset();  // too long: the next initialization starts a new world
+      imu_since_good_.clear();
+    }
+  }
+  if (frame.features.empty()) buffer_.clear();  // no structure can span a blank frame
+  buffer_.emplace_back(frame, imu_since_previous);
+  if (buffer_.size() > options_.init_window_frames) buffer_.pop_front();
+  auto window = tryInitialize();
+  if (window) buffer_.clear();
+  return window;
+}
+
+void Bootstrapper::setGoodState(double t, const double* pose, const double* speed_bias) {
+  last_good_ = GoodState{t, {}, {}};
+  std::copy(pose, pose + 7, last_good_->pose);
+  std::copy(speed_bias, speed_bias + 9, last_good_->speed_bias);
+}
+
+void Bootstrapper::restart(const std::vector<ImuSample>& imu_since_good,
+                           const std::string& status) {
+  buffer_.clear();
+  first_geometry_failure_t_ = -1;
+  imu_since_good_ = imu_since_good;
+  status_ = status_detail_ = status;
+}
+
+std::optional<InitializedWindow> Bootstrapper::tryInitialize() {
+  std::vector<FeatureFrame> frames;
+  std::vector<std::shared_ptr<ImuPreintegration>> imu;
+  // Preintegrations linearized at the last good biases after a reset, at zero before the first
+  // initialization.
+  const double zero[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+  const double* biases = last_good_ ? last_good_->speed_bias : zero;
+  for (size_t k = 0; k < buffer_.size(); ++k) {
+    frames.push_back(buffer_[k].first);
+    imu.push_back(k == 0 ? nullptr
+                         : imu_link_.preintegrate(buffer_[k].second, buffer_[k - 1].first.t,
+                                                  frames.back().t, biases, &calib_.imu));
+    if (k > 0 && !imu.back()) return std::nullopt;  // a frame without IMU: wait for a clean window
+  }
+  InitializationResult init =
+      (last_good_ ? reinitializer_ : initializer_).tryInitialize(frames, imu);
+  if (!last_good_ && init.status == InitStatus::kGeometryFailed && options_.init_fallback &&
+      options_.initializer != InitializerMethod::kEssentialMatrix) {
+    if (first_geometry_failure_t_ < 0) first_geometry_failure_t_ = frames.back().t;
+    if (frames.back().t - first_geometry_failure_t_ >= options_.init_fallback_after_s)
+      init = fallback_initializer_.tryInitialize(frames, imu);
+  }
+  status_ = init.ok() ? "tracking" : toString(init.status);
+  status_detail_ = init.reason;
+  if (!init.ok()) return std::nullopt;
+  if (options_.estimate_time_offset && !time_offset_estimated_) {
+    // A significant camera-IMU offset: the same window again, on the corrected frame times; kept
+    // only if it initializes there.
+    if (const double td = significantTimeOffset(init); td != 0) {
+      const auto original = buffer_;
+      const double original_offset = time_offset_;
+      moveBuffer(td);
+      if (auto corrected = tryInitialize()) {
+        time_offset_note_ += ": frame times corrected";
+        return corrected;
+      }
+      buffer_ = original;
+      time_offset_ = original_offset;
+      time_offset_note_ += ": not applied (no initialization on the corrected times)";
+      status_ = "tracking";
+      status_detail_ = init.reason;
+    }
+  }
+  return window(frames, init);
+}
+
+InitializedWindow Bootstrapper::window(const std::vector<FeatureFrame>& frames,
+                                       const InitializationResult& init) const {
+  // Keyframes: evenly spaced over the initialization window, ending at its newest frame.
+  const size_t n = frames.size();
+  const size_t step =
+      std::max<size_t>(1, (n - 1 + options_.window_size - 2) / (options_.window_size - 1));
+  std::vector<size_t> chosen;
+  for (long k = static_cast<long>(n) - 1; k >= 0; k -= static_cast<long>(step))
+    chosen.insert(chosen.begin(), static_cast<size_t>(k));
+  InitializedWindow w;
+  for (size_t c = 0; c < chosen.size(); ++c) {
+    InitializedWindow::Keyframe f;
+    f.features = frames[chosen[c]];
+    setPoseBlock(init.T_w_b[chosen[c]], f.pose);
+    for (int i = 0; i < 3; ++i) {
+      f.speed_bias[i] = init.v_w[chosen[c]][i];
+      f.speed_bias[3 + i] = init.ba[i];
+      f.speed_bias[6 + i] = init.bg[i];
+    }
+    if (c > 0)
+      for (size_t k = chosen[c - 1] + 1; k <= chosen[c]; ++k)
+        appendSamples(f.imu, buffer_[k].second);
+    w.keyframes.push_back(std::move(f));
+  }
+  // The initializer's depths (camera of the feature's first frame in its window) as world points.
+  for (const auto& [id, depth] : init.depths) {
+    const FeatureFrame& first = frames[depth.frame];
+    const auto seen = std::find_if(first.features.begin(), first.features.end(),
+                                   [&](const TrackedFeature& f) { return f.id == id; });
+    if (seen == first.features.end()) continue;
+    w.points[id] = init.T_w_b[depth.frame] * calib_.T_BC *
+                   (depth.depth * Eigen::Vector3d(seen->normalized.x(), seen->normalized.y(), 1));
+  }
+  w.planes = init.planes;
+  return w;
+}
+
+std::optional<WorldShift> Bootstrapper::reconnect(double t, const double* pose) {
+  if (!last_good_) return std::nullopt;
+  std::vector<ImuSample> samples;  // up to the first keyframe
+  for (const ImuSample& sample : imu_since_good_)
+    if (sample.t <= t) samples.push_back(sample);
+  const auto pre =
+      imu_link_.preintegrate(samples, last_good_->t, t, last_good_->speed_bias, &calib_.imu);
+  const GoodState good = *last_good_;
+  last_good_.reset();
+  imu_since_good_.clear();
+  if (!pre) return std::nullopt;
+  double predicted_pose[7], predicted_speed_bias[9];
+  imu_link_.predict(good.pose, good.speed_bias, *pre, predicted_pose, predicted_speed_bias);
+  // Both worlds have z up: they differ by a yaw and a translation.
+  const Eigen::Matrix3d M = poseRotation(predicted_pose).toRotationMatrix() *
+                            poseRotation(pose).toRotationMatrix().transpose();
+  WorldShift s;
+  s.yaw =
+      Eigen::Quaterniond(Eigen::AngleAxisd(std::atan2(M(1, 0), M(0, 0)), Eigen::Vector3d::UnitZ()));
+  s.shift = posePosition(predicted_pose) - s.yaw * posePosition(pose);
+  return s;
+}
+
+double Bootstrapper::significantTimeOffset(const InitializationResult& init) {
+  time_offset_estimated_ = true;
+  std::vector<double> t;
+  std::vector<Eigen::Matrix3d> R;
+  for (size_t k = 0; k < buffer_.size(); ++k) {
+    t.push_back(buffer_[k].first.t);
+    R.push_back(init.T_w_b[k].linear());
+  }
+  std::string why;
+  const auto e =
+      estimateTimeOffset(t, R, bufferSamples(), init.bg, options_.max_time_offset_s, &why);
+  if (!e) {
+    time_offset_note_ = "time offset not estimated: " + why;
+    return 0;
+  }
+  const bool significant =
+      std::abs(e->td) >= options_.min_time_offset_s && std::abs(e->td) > 3 * e->sigma;
+  char text[160];
+  std::snprintf(text, sizeof text,
+                "time offset %+.1f ms (sigma %.1f ms, %zu frames, fit %.4f deg)%s", 1e3 * e->td,
+                1e3 * e->sigma, e->frames, e->rms_deg, significant ? "" : ": not applied");
+  time_offset_note_ = text;
+  return significant ? e->td : 0;
+}
+
+std::vector<ImuSample> Bootstrapper::bufferSamples() const {
+  std::vector<ImuSample> samples;
+  for (const auto& [frame, imu] : buffer_) appendSamples(samples, imu);
+  return samples;
+}
+
+void Bootstrapper::moveBuffer(double dt) {
+  time_offset_ += dt;
+  const std::vector<ImuSample> samples = bufferSamples();
+  for (auto& [frame, imu] : buffer_) frame.t += dt;
+  // Each frame's samples dealt out again: from the last one at or before the previous frame.
+  for (size_t k = 0; k < buffer_.size(); ++k) {
+    const double from = k == 0 ? -INFINITY : buffer_[k - 1].first.t;
+    std::vector<ImuSample>& imu = buffer_[k].second;
+    imu.clear();
+    for (size_t j = 0; j < samples.size(); ++j)
+      if (samples[j].t <= buffer_[k].first.t &&
+          (samples[j].t > from || (j + 1 < samples.size() && samples[j + 1].t > from)))
+        imu.push_back(samples[j]);
+  }
+}
+
+}  // namespace rpvio

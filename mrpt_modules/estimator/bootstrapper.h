@@ -1,0 +1,103 @@
+#pragma once
+// The sliding-window estimator's start and restart: buffers the frames while not initialized, runs
+// the initializers on them (the configured method; the essential-matrix fallback when its geometry
+// fails; the re-initializer after a reset), estimates the camera-IMU time offset at the first
+// initialization (and initializes again on the corrected frame times), and places a re-initialized
+// window in the old world by IMU dead reckoning from the last good state.
+#include <deque>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mrpt_modules/core/feature_frame.h"
+#include "mrpt_modules/estimator/estimator_options.h"
+#include "mrpt_modules/imu/imu_link.h"
+#include "mrpt_modules/initialization/initializer.h"
+
+namespace rpvio {
+
+/// An initialized window: keyframes evenly spaced over the initialization window, ending at its
+/// newest frame, with the initializer's states.
+struct InitializedWindow {
+  struct Keyframe {
+    FeatureFrame features;
+    std::vector<ImuSample> imu;  // since the previous keyframe
+    double pose[7] = {0, 0, 0, 0, 0, 0, 1};
+    double speed_bias[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+  };
+  std::vector<Keyframe> keyframes;
+  std::map<int, Eigen::Vector3d> points;  // feature id: world point of the initializer's depth
+  std::map<int, WorldPlane> planes;       // mask label: plane
+};
+
+/// Moves a re-initialized window into the world of the last good state (both have z up).
+struct WorldShift {
+  Eigen::Quaterniond yaw;
+  Eigen::Vector3d shift;
+};
+
+class Bootstrapper {
+ public:
+  Bootstrapper(const Calibration& calibration, const EstimatorOptions& options,
+               const ImuLink& imu_link);
+
+  /// A frame (IMU clock) with its samples since the previous one, while not initialized: the
+  /// initialized window when an initializer succeeds on the buffered frames.
+  std::optional<InitializedWindow> addFrame(const FeatureFrame& frame,
+                                            const std::vector<ImuSample>& imu_since_previous);
+  /// The state of a frame the estimator reported: where dead reckoning starts after a reset.
+  void setGoodState(double t, const double* pose, const double* speed_bias);
+  /// After a reset (`status` says why): the buffer starts anew; `imu_since_good` are the samples
+  /// since the last good state.
+  void restart(const std::vector<ImuSample>& imu_since_good, const std::string& status);
+  /// Once per initialized window: the yaw and shift that put its first keyframe (time t, pose) on
+  /// the IMU's dead reckoning from the last good state; none (a new world) when there is none or
+  /// the IMU does not reach the keyframe. Forgets the last good state either way.
+  std::optional<WorldShift> reconnect(double t, const double* pose);
+
+  /// t_imu = t_frame + timeOffset(): the calibration's offset plus the estimated correction.
+  double timeOffset() const { return time_offset_; }
+  /// What the time-offset estimation found ("" before it ran).
+  const std::string& timeOffsetNote() const { return time_offset_note_; }
+  /// The last attempt's status ("tracking" on success) and its reason with figures.
+  const std::string& status() const { return status_; }
+  const std::string& statusDetail() const { return status_detail_; }
+
+ private:
+  /// The initializers on the buffered frames; the time offset the first time one succeeds.
+  std::optional<InitializedWindow> tryInitialize();
+  /// The window of a successful initialization on the buffered frames.
+  InitializedWindow window(const std::vector<FeatureFrame>& frames,
+                           const InitializationResult& init) const;
+  /// The time offset estimated on the initialized window when significant, else 0 (once).
+  double significantTimeOffset(const InitializationResult& init);
+  /// The IMU samples of the buffer, in time order, once each.
+  std::vector<ImuSample> bufferSamples() const;
+  /// Moves the buffered frames (and the offset) by dt and deals their IMU samples out again.
+  void moveBuffer(double dt);
+
+  struct GoodState {
+    double t = 0;
+    double pose[7];
+    double speed_bias[9];
+  };
+
+  Calibration calib_;
+  EstimatorOptions options_;
+  const ImuLink& imu_link_;
+  Initializer initializer_;
+  Initializer fallback_initializer_;  // when the configured method's geometry fails
+  Initializer reinitializer_;         // after a reset
+  std::deque<std::pair<FeatureFrame, std::vector<ImuSample>>> buffer_;
+  double time_offset_ = 0;
+  bool time_offset_estimated_ = false;
+  std::string time_offset_note_;
+  double first_geometry_failure_t_ = -1;   // of the configured initializer (for the fallback)
+  std::optional<GoodState> last_good_;     // newest state reported; kept through a reset
+  std::vector<ImuSample> imu_since_good_;  // from last_good_ on, while re-initializing
+  std::string status_ = "collecting frames";
+  std::string status_detail_ = status_;
+};
+
+}  // namespace rpvio

@@ -1,0 +1,138 @@
+#pragma once
+// The options of the sliding-window estimator (section [SlidingWindowEstimatorModule]; the planes
+// map's are [PlanesMap]).
+#include "common/options.h"
+#include "mrpt_modules/imu/imu_link.h"
+#include "mrpt_modules/initialization/initializer.h"
+#include "planes_map/planes_map.h"
+
+namespace rpvio {
+
+enum class HomographyPlanes { kNone, kLargest, kAll };
+inline const OptionNames<HomographyPlanes> kHomographyPlanesNames = {
+    {"none", HomographyPlanes::kNone},
+    {"largest", HomographyPlanes::kLargest},
+    {"all", HomographyPlanes::kAll}};
+inline const OptionNames<InitializerMethod> kInitializerMethodNames = {
+    {"homography", InitializerMethod::kPlanarHomography},
+    {"essential", InitializerMethod::kEssentialMatrix}};
+
+struct EstimatorOptions {
+  size_t window_size = 10;           // keyframes
+  double keyframe_parallax_px = 10;  // at the virtual focal length
+  size_t keyframe_min_tracks = 20;   // fewer common tracks: keyframe
+  double max_keyframe_gap_s = 0.3;   // a keyframe at least this often
+  HomographyPlanes homography_planes = HomographyPlanes::kLargest;
+  double pixel_sigma = 1.5;   // factor weight: virtual_focal / pixel_sigma
+  double cauchy_scale = 1.0;  // robust loss scale, in units of pixel_sigma
+  // The window's IMU factors use the calibration's noise densities and random walks times this
+  // factor (VINS-Mono's configs inflate them likewise). Measured with tracked features on the
+  // 80 s simulated sequences, rpvio-single: ATE static / C1 / C4 0.23 / 0.40 / 0.41 m at 3,
+  // 0.41 / 0.42 / 0.52 m at 10, 0.68 m on C1 at 30. (Exact features, tests/estimator: 0.03 m over
+  // 20 s at 3 with pixel_sigma 0.5.)
+  double imu_noise_inflation = 3;
+  // IMU gaps: a step between samples longer than this (s) makes the interval's IMU factor this
+  // many times noisier (white-noise densities) and keeps it out of the marginalization prior; so
+  // does a saturated sensor (for its own noise): an axis with the same value, at least this large,
+  // on three consecutive samples.
+  double max_imu_step_s = 0.05;
+  double imu_gap_noise_inflation = 30;
+  double min_saturated_accel = 11.8;  // m/s² (1.2 g: never a quantized value at rest)
+  double min_saturated_gyro = 0.1;    // rad/s
+  int max_iterations = 8;
+  double max_solver_time_s = 0;  // 0: no time budget (a budget makes runs machine-dependent)
+  double min_triangulation_angle_deg = 1.0;
+  // Failure detection.
+  double max_accel_bias = 2.5;  // m/s²
+  double max_gyro_bias = 1.0;   // rad/s
+  double max_jump_m = 5.0;      // optimized newest pose vs its IMU prediction
+  double max_jump_deg = 50.0;
+  size_t min_features = 4;     // features in use in the newest frame ...
+  double max_blind_s = 2.5;    // ... not reached for this long (IMU only meanwhile: a 2 s
+                               // blackout is bridged at 1.2x the fault-free ATE)
+  double virtual_focal = 460;  // px; parallax thresholds and factor weights refer to it
+  // First initialization: the method (homography: RP-VIO's, on the largest plane; essential:
+  // VINS-Mono's 5-point SfM), the window's time span (s: baseline and IMU excitation for the
+  // scale) and the rotation-compensated parallax (px at virtual_focal) it needs.
+  InitializerMethod initializer = InitializerMethod::kPlanarHomography;
+  double init_window_s = 2.0;
+  double init_parallax_px = 30.0;
+  // Re-initialization after a reset: mid-flight accelerations make the scale less observable
+  // than the take-off, so the alignment's scale may be this uncertain (the window refines it) ...
+  double reinit_max_scale_sigma = 0.10;
+  // ... by this method: the homography initializer's structure fails mid-flight on the simulator
+  // (bundle adjustment diverges), the essential-matrix one (on the same, masked features) works.
+  InitializerMethod reinitializer = InitializerMethod::kEssentialMatrix;
+  // When the homography initializer's two-view geometry or structure fails (its bundle adjustment
+  // diverges on some windows, e.g. with an unknown 30 ms camera-IMU offset), the same window is
+  // tried with the essential-matrix method, same thresholds.
+  bool init_fallback = true;
+  double init_fallback_after_s = 0;  // ... once it has failed for this long (0: at once)
+  // ... and the new window is placed in the old world by dead reckoning from the last good state
+  // when the reset was at most this long ago (else the trajectory continues in a new world).
+  double max_reconnect_s = 20;
+  size_t init_window_frames = 41;  // frames kept while initializing (2 s at 20 Hz)
+  // Camera-IMU time offset, estimated once from the first initialization window's rotations
+  // (time_offset.h), searched within ±max_time_offset_s. When at least min_time_offset_s and 3
+  // sigma, the window is initialized again on the corrected frame times, and the correction kept
+  // if that succeeds. On the simulator without an offset the masked modes estimate -4.3 to +5.3 ms
+  // (sigma 0.8-1.1 ms: the gyroscope's random walk is not white), the unmasked one up to -18 ms
+  // (moving features); 30 ms comes out at 32 ms.
+  bool estimate_time_offset = true;
+  double min_time_offset_s = 0.010;
+  double max_time_offset_s = 0.05;
+  // At the end of a run, one bundle adjustment over all keyframes (batch_refinement.h): the plane
+  // map's final (n, d) and trajectory_refined.tum. It keeps every keyframe's observations until
+  // then (about 1 MB per minute at 20 Hz) and costs about 20 s per 80 s simulated sequence.
+  bool batch_refinement = true;
+  // ... skipped (and said so) beyond this many keyframes: its memory grows with them (355 MB peak
+  // for the 459 keyframes of an 80 s sequence with rpvio-multi, against 91 MB without).
+  size_t batch_refinement_max_keyframes = 2000;
+  PlanesMapOptions planes_map;  // its own section, [PlanesMap]
+
+  template <class Visitor>
+  void fields(Visitor& v) {
+    RPVIO_OPTION(v, window_size);
+    RPVIO_OPTION(v, keyframe_parallax_px);
+    RPVIO_OPTION(v, keyframe_min_tracks);
+    RPVIO_OPTION(v, max_keyframe_gap_s);
+    RPVIO_OPTION_CHOICE(v, homography_planes, kHomographyPlanesNames);
+    RPVIO_OPTION(v, pixel_sigma);
+    RPVIO_OPTION(v, cauchy_scale);
+    RPVIO_OPTION(v, imu_noise_inflation);
+    RPVIO_OPTION(v, max_imu_step_s);
+    RPVIO_OPTION(v, imu_gap_noise_inflation);
+    RPVIO_OPTION(v, min_saturated_accel);
+    RPVIO_OPTION(v, min_saturated_gyro);
+    RPVIO_OPTION(v, max_iterations);
+    RPVIO_OPTION(v, max_solver_time_s);
+    RPVIO_OPTION(v, min_triangulation_angle_deg);
+    RPVIO_OPTION(v, max_accel_bias);
+    RPVIO_OPTION(v, max_gyro_bias);
+    RPVIO_OPTION(v, max_jump_m);
+    RPVIO_OPTION(v, max_jump_deg);
+    RPVIO_OPTION(v, min_features);
+    RPVIO_OPTION(v, max_blind_s);
+    RPVIO_OPTION(v, virtual_focal);
+    RPVIO_OPTION_CHOICE(v, initializer, kInitializerMethodNames);
+    RPVIO_OPTION(v, init_window_s);
+    RPVIO_OPTION(v, init_parallax_px);
+    RPVIO_OPTION(v, init_window_frames);
+    RPVIO_OPTION(v, init_fallback);
+    RPVIO_OPTION(v, init_fallback_after_s);
+    RPVIO_OPTION_CHOICE(v, reinitializer, kInitializerMethodNames);
+    RPVIO_OPTION(v, reinit_max_scale_sigma);
+    RPVIO_OPTION(v, max_reconnect_s);
+    RPVIO_OPTION(v, estimate_time_offset);
+    RPVIO_OPTION(v, min_time_offset_s);
+    RPVIO_OPTION(v, max_time_offset_s);
+    RPVIO_OPTION(v, batch_refinement);
+    RPVIO_OPTION(v, batch_refinement_max_keyframes);
+  }
+  void validate(const OptionsLoader& loader) const;
+  ImuLinkOptions imuLinkOptions() const;
+  /// The first initializer's options (the others are variants of it).
+  InitializerOptions initializerOptions() const;
+};
+
+}  // namespace rpvio
