@@ -22,14 +22,8 @@ namespace {
 
 // Plane parameters handed to the planes map, which fuses visits by information. Their covariance
 // is the window's, relative to its oldest pose; between visits the odometry drifts (the simulator's
-// trajectory errors: 0.1 deg, 3 cm), which no visit is trusted beyond. Until a covariance has been
-// computed: a standard deviation of (n, d) for one supporting point.
+// trajectory errors: 0.1 deg, 3 cm), which no visit is trusted beyond.
 constexpr double kVisitDriftNormalDeg = 0.2, kVisitDriftDistance = 0.03;
-constexpr double kPlaneSigmaPerPoint = 0.05;
-constexpr size_t kMinPlanePoints = 10;
-// Planarity of the triangulated points of a new plane: their rms distance to the fitted plane, as
-// a fraction of their distance to the newest camera (triangulation error grows with depth).
-constexpr double kMaxPlaneRmsPerDepth = 0.04;
 constexpr double kMinDepth = 0.1, kMaxDepth = 100;
 
 /// The noise densities and random walks of `noise` times `factor`.
@@ -49,6 +43,7 @@ SlidingWindowEstimator::SlidingWindowEstimator(const Calibration& calibration,
       window_imu_noise_(inflatedNoise(calibration.imu, options.imu_noise_inflation)),
       imu_link_(window_imu_noise_, calibration.imu.gravity, options.imuLinkOptions()),
       bootstrapper_(calibration, options, imu_link_),
+      planes_(options.homography_planes),
       planes_map_(options.planes_map) {
   setPoseBlock(calib_.T_BC, mount_);
 }
@@ -61,85 +56,6 @@ Eigen::Isometry3d SlidingWindowEstimator::camera(uint64_t frame_id) const {
 
 CameraPoseLookup SlidingWindowEstimator::cameraLookup() const {
   return [this](uint64_t id) { return camera(id); };
-}
-
-std::set<int> SlidingWindowEstimator::constrainedPlanes() const {
-  std::map<int, size_t> tracks;
-  for (const auto& [id, track] : features_.tracks())
-    if (inUse(track)) ++tracks[track.plane_id];
-  std::set<int> constrained;
-  for (const auto& [plane, n] : tracks)
-    if (n >= kMinPlanePoints) constrained.insert(plane);
-  return constrained;
-}
-
-PlaneEstimate* SlidingWindowEstimator::homographyPlane(const FeatureTrack& track,
-                                                       const std::set<int>& constrained) {
-  const auto plane = planes_.find(track.plane_id);
-  return used_planes_.count(track.plane_id) && constrained.count(track.plane_id) &&
-                 plane != planes_.end()
-             ? &plane->second
-             : nullptr;
-}
-
-bool SlidingWindowEstimator::inUse(const FeatureTrack& track) const {
-  return track.triangulated && track.observations.size() >= 2;
-}
-
-void SlidingWindowEstimator::choosePlanes() {
-  std::map<int, size_t> count;  // tracks per plane label in the window
-  for (const auto& [id, track] : features_.tracks())
-    if (track.plane_id > 0) ++count[track.plane_id];
-  if (options_.homography_planes != HomographyPlanes::kLargest) {
-    used_planes_.clear();
-    if (options_.homography_planes == HomographyPlanes::kAll)
-      for (const auto& [plane, n] : count) used_planes_.insert(plane);
-    return;
-  }
-  // Largest plane, with hysteresis: the current one stays while it keeps 70% of the best count.
-  int best = -1;
-  size_t best_count = 0;
-  for (const auto& [plane, n] : count)
-    if (n > best_count) best = plane, best_count = n;
-  const int current = used_planes_.empty() ? -1 : *used_planes_.begin();
-  if (current > 0 && count.count(current) && count[current] >= 0.7 * best_count) return;
-  used_planes_.clear();
-  if (best > 0) used_planes_.insert(best);
-}
-
-void SlidingWindowEstimator::initializePlanes() {
-  // A plane in use without parameters: the map's if it knows the label, else a least-squares fit
-  // of its triangulated features.
-  for (int plane : used_planes_) {
-    if (planes_.count(plane)) continue;
-    if (const Plane* known = planes_map_.planeOfMask(plane)) {
-      PlaneEstimate e;
-      for (int i = 0; i < 3; ++i) e.normal[i] = known->normal[i];
-      e.distance[0] = known->distance;
-      e.visit = ++plane_visits_;
-      planes_[plane] = e;
-      continue;
-    }
-    std::vector<Eigen::Vector3d> points;
-    for (const auto& [id, track] : features_.tracks())
-      if (track.plane_id == plane && track.triangulated && track.observations.size() >= 3)
-        points.push_back(features_.worldPoint(track, cameraLookup()));
-    if (points.size() < kMinPlanePoints) continue;
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    for (const auto& p : points) mean += p / points.size();
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (const auto& p : points) cov += (p - mean) * (p - mean).transpose();
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-    const double depth = (mean - camera(window_.back()->id).translation()).norm();
-    if (std::sqrt(eig.eigenvalues()(0) / points.size()) > kMaxPlaneRmsPerDepth * depth) continue;
-    Eigen::Vector3d n = eig.eigenvectors().col(0);
-    if (n.dot(mean) < 0) n = -n;  // convention: d ≥ 0
-    PlaneEstimate e;
-    for (int i = 0; i < 3; ++i) e.normal[i] = n[i];
-    e.distance[0] = n.dot(mean);
-    e.visit = ++plane_visits_;
-    planes_[plane] = e;
-  }
 }
 
 void SlidingWindowEstimator::optimize(bool plane_covariances) {
@@ -160,11 +76,11 @@ void SlidingWindowEstimator::optimize(bool plane_covariances) {
   const uint64_t newest = window_.back()->id;
   report_.features = 0;
   std::set<int> planes_with_factors;
-  const std::set<int> constrained = constrainedPlanes();
+  const std::set<int> constrained = planes_.constrained(features_);
   for (auto& [id, track] : features_.tracks()) {
     if (!inUse(track)) continue;
     const TrackObservation& anchor = track.observations.front();
-    PlaneEstimate* plane = homographyPlane(track, constrained);
+    PlaneEstimate* plane = planes_.homographyPlane(track, constrained);
     for (size_t k = 1; k < track.observations.size(); ++k) {
       const TrackObservation& o = track.observations[k];
       problem.AddResidualBlock(
@@ -182,7 +98,7 @@ void SlidingWindowEstimator::optimize(bool plane_covariances) {
   report_.planes = planes_with_factors.size();
   if (prior_) problem.AddResidualBlock(new MarginalizationFactor(prior_), nullptr, prior_->blocks);
   std::vector<double*> held;
-  for (auto& [mask, e] : planes_) {
+  for (auto& [mask, e] : planes_.estimates()) {
     if (!problem.HasParameterBlock(e.normal)) continue;
     problem.SetManifold(e.normal, &solve_problem.sphere);
     // A plane in the prior only because its tracks in use fell below kMinPlanePoints is held: the
@@ -221,8 +137,8 @@ void SlidingWindowEstimator::updatePlaneCovariances(ceres::Problem& problem,
                                                     const std::set<int>& planes) {
   std::vector<double*> blocks;
   for (int mask : planes) {
-    blocks.push_back(planes_.at(mask).normal);
-    blocks.push_back(planes_.at(mask).distance);
+    blocks.push_back(planes_.estimates().at(mask).normal);
+    blocks.push_back(planes_.estimates().at(mask).distance);
   }
   if (blocks.empty()) return;
   const auto covariance = marginalCovariance(problem, blocks);
@@ -230,7 +146,7 @@ void SlidingWindowEstimator::updatePlaneCovariances(ceres::Problem& problem,
   const double drift_normal = kVisitDriftNormalDeg * M_PI / 180;
   int offset = 0;
   for (int mask : planes) {
-    PlaneEstimate& e = planes_.at(mask);
+    PlaneEstimate& e = planes_.estimates().at(mask);
     // Tangent (2 normal numbers on the sphere, d) to ambient (n, d).
     Eigen::Matrix<double, 3, 2, Eigen::RowMajor> plus;
     ceres::SphereManifold<3>().PlusJacobian(e.normal, plus.data());
@@ -305,11 +221,11 @@ void SlidingWindowEstimator::marginalizeOldest() {
   for (auto& f : window_) pose_of[f->id] = f->pose;
   const double weight = options_.virtual_focal / options_.pixel_sigma;
   auto loss = std::make_shared<ceres::CauchyLoss>(options_.cauchy_scale);
-  const std::set<int> constrained = constrainedPlanes();
+  const std::set<int> constrained = planes_.constrained(features_);
   for (auto& [id, track] : features_.tracks()) {
     if (!inUse(track) || track.observations.front().frame != oldest.id) continue;
     const TrackObservation& anchor = track.observations.front();
-    PlaneEstimate* plane = homographyPlane(track, constrained);
+    PlaneEstimate* plane = planes_.homographyPlane(track, constrained);
     for (size_t k = 1; k < track.observations.size(); ++k) {
       const TrackObservation& o = track.observations[k];
       marginalizer.addFactor(std::unique_ptr<ceres::CostFunction>(ReprojectionResidual::create(
@@ -339,7 +255,8 @@ void SlidingWindowEstimator::forgetUnseenPlanes() {
   std::set<int> seen;
   for (const auto& [id, track] : features_.tracks()) seen.insert(track.plane_id);
   std::set<const double*> gone;
-  for (auto& [mask, e] : planes_)
+  PlaneEstimates& planes = planes_.estimates();
+  for (auto& [mask, e] : planes)
     if (!seen.count(mask) && prior_ && prior_->involves(e.normal))
       gone.insert({e.normal, e.distance});
   if (!gone.empty()) {
@@ -348,8 +265,8 @@ void SlidingWindowEstimator::forgetUnseenPlanes() {
                            prior_->blocks);
     prior_ = marginalizer.marginalize(gone);
   }
-  for (auto it = planes_.begin(); it != planes_.end();)
-    it = seen.count(it->first) ? std::next(it) : planes_.erase(it);
+  for (auto it = planes.begin(); it != planes.end();)
+    it = seen.count(it->first) ? std::next(it) : planes.erase(it);
 }
 
 void SlidingWindowEstimator::dropSecondNewest() {
@@ -373,22 +290,9 @@ void SlidingWindowEstimator::dropSecondNewest() {
 }
 
 void SlidingWindowEstimator::flushPlanes() {
-  for (const auto& [mask, estimate] : planes_) {
-    PlaneObservation o;
-    o.mask_id = mask;
-    o.normal = Eigen::Vector3d(estimate.normal).normalized();
-    o.distance = estimate.distance[0];
-    for (const auto& [id, track] : features_.tracks())
-      if (track.plane_id == mask && track.triangulated)
-        o.points.push_back(features_.worldPoint(track, cameraLookup()));
-    if (o.points.size() < kMinPlanePoints) continue;
-    o.covariance =
-        estimate.covariance.value_or(Eigen::Matrix4d::Identity() * kPlaneSigmaPerPoint *
-                                     kPlaneSigmaPerPoint / static_cast<double>(o.points.size()));
-    o.time = window_.back()->features.t;
-    o.visit = estimate.visit;
+  for (const PlaneObservation& o :
+       planes_.observations(features_, cameraLookup(), window_.back()->features.t))
     planes_map_.update(o);
-  }
 }
 
 void SlidingWindowEstimator::archiveKeyframe(const Frame& frame, const Frame* next) {
@@ -401,7 +305,7 @@ void SlidingWindowEstimator::archiveKeyframe(const Frame& frame, const Frame* ne
   // The window's factor, noise inflated (with the calibration's noise the refined trajectories of
   // the simulated static sequences were 1.0-2.3x worse).
   if (next) k.to_next = next->imu_from_previous;
-  keyframe_archive_.add(k, features_, [this](const FeatureTrack& t) { return inUse(t); });
+  keyframe_archive_.add(k, features_, inUse);
 }
 
 void SlidingWindowEstimator::finishMap() {
@@ -486,14 +390,7 @@ void SlidingWindowEstimator::startWindow(const InitializedWindow& init) {
     track.inv_depth[0] = 1.0 / X_c.z();
     track.triangulated = true;
   }
-  planes_.clear();
-  for (const auto& [mask, plane] : init.planes) {
-    PlaneEstimate e;
-    for (int i = 0; i < 3; ++i) e.normal[i] = plane.n[i];
-    e.distance[0] = plane.d;
-    e.visit = ++plane_visits_;
-    planes_[mask] = e;
-  }
+  planes_.start(init.planes);
   // Re-initialized soon enough after a reset: into the old world; else a new world, and the
   // archived keyframes are in another one.
   if (const auto shift =
@@ -503,7 +400,7 @@ void SlidingWindowEstimator::startWindow(const InitializedWindow& init) {
     keyframe_archive_.clear();
   initialized_ = true;
   last_seen_features_t_ = window_.back()->features.t;
-  choosePlanes();
+  planes_.choose(features_);
   features_.triangulate(cameraLookup(), options_.min_triangulation_angle_deg * M_PI / 180,
                         kMinDepth, kMaxDepth);
   optimize();
@@ -519,7 +416,7 @@ void SlidingWindowEstimator::moveWindow(const WorldShift& s) {
     std::copy(pose, pose + 7, f->pose);
     std::copy(v.data(), v.data() + 3, f->speed_bias);
   }
-  for (auto& [mask, e] : planes_) {
+  for (auto& [mask, e] : planes_.estimates()) {
     const Eigen::Vector3d n = s.yaw * Eigen::Vector3d(e.normal);
     std::copy(n.data(), n.data() + 3, e.normal);
     e.distance[0] += n.dot(s.shift);
@@ -538,7 +435,6 @@ void SlidingWindowEstimator::reset(const std::string& cause,
   features_.clear();
   prior_.reset();
   planes_.clear();
-  used_planes_.clear();
   bootstrapper_.restart(imu_since_good, status_);
 }
 
@@ -584,10 +480,11 @@ std::optional<StateEstimate> SlidingWindowEstimator::addFrame(
   window_.push_back(std::move(f));
 
   const bool keyframe = secondNewestIsKeyframe();
-  choosePlanes();
+  planes_.choose(features_);
   features_.triangulate(cameraLookup(), options_.min_triangulation_angle_deg * M_PI / 180,
                         kMinDepth, kMaxDepth);
-  initializePlanes();
+  planes_.initialize(features_, cameraLookup(), camera(window_.back()->id).translation(),
+                     planes_map_);
   // The planes go to the map after the oldest frame's marginalization.
   optimize(keyframe && window_.size() > options_.window_size + 1);
   rejectDepthOutliers();

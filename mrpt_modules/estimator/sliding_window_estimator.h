@@ -35,6 +35,7 @@
 #include "mrpt_modules/estimator/estimator_options.h"
 #include "mrpt_modules/estimator/estimator_types.h"
 #include "mrpt_modules/estimator/feature_manager.h"
+#include "mrpt_modules/estimator/window_planes.h"
 #include "mrpt_modules/factors/marginalization.h"
 #include "mrpt_modules/imu/imu_link.h"
 #include "mrpt_modules/initialization/initializer.h"
@@ -62,7 +63,7 @@ class SlidingWindowEstimator {
   /// The status with its figures (e.g. "too little parallax (12.3 px)"): for the log.
   const std::string& statusDetail() const { return status_detail_; }
   const FrameReport& lastReport() const { return report_; }
-  const PlaneEstimates& planes() const { return planes_; }
+  const PlaneEstimates& planes() const { return planes_.estimates(); }
   const PlanesMap& planesMap() const { return planes_map_; }
   /// t_imu = t_frame + timeOffset(): the calibration's offset plus the estimated correction.
   double timeOffset() const { return bootstrapper_.timeOffset(); }
@@ -100,15 +101,6 @@ class SlidingWindowEstimator {
   void moveWindow(const WorldShift& shift);
   Eigen::Isometry3d camera(uint64_t frame_id) const;
   CameraPoseLookup cameraLookup() const;
-  bool inUse(const FeatureTrack& track) const;
-  /// Labels of the planes with kMinPlanePoints tracks in use or more: only they get homography
-  /// factors (fewer leave directions of (n, d) unobserved, which a solve then moves at will).
-  std::set<int> constrainedPlanes() const;
-  /// The plane whose homography factors the track's observations get (one of `constrained`), or
-  /// nullptr.
-  PlaneEstimate* homographyPlane(const FeatureTrack& track, const std::set<int>& constrained);
-  void choosePlanes();
-  void initializePlanes();
   /// One solve of the window; with `plane_covariances`, the covariance of every plane with
   /// factors then (what the planes map weighs a visit by).
   void optimize(bool plane_covariances = false);
@@ -140,14 +132,12 @@ class SlidingWindowEstimator {
   uint64_t next_frame_id_ = 0;
   FeatureManager features_;
   std::shared_ptr<const MarginalizationPrior> prior_;
-  PlaneEstimates planes_;      // by mask id: planes in the current window
-  std::set<int> used_planes_;  // mask ids whose features (and homographies) are in use
+  WindowPlanes planes_;
   PlanesMap planes_map_;
   KeyframeArchive keyframe_archive_;
   std::vector<StateEstimate> refined_trajectory_;
   std::string refinement_report_;
   double refinement_seconds_ = 0;
-  uint64_t plane_visits_ = 0;  // planes that entered the window so far
   double last_seen_features_t_ = 0;
 };
 

@@ -1,0 +1,119 @@
+#include "mrpt_modules/estimator/window_planes.h"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
+namespace rpvio {
+namespace {
+
+// Planarity of the triangulated points of a new plane: their rms distance to the fitted plane, as
+// a fraction of their distance to the newest camera (triangulation error grows with depth).
+constexpr double kMaxPlaneRmsPerDepth = 0.04;
+// Until a covariance has been computed, a plane is handed to the map with this standard deviation
+// of (n, d) for one supporting point.
+constexpr double kPlaneSigmaPerPoint = 0.05;
+
+}  // namespace
+
+PlaneEstimate WindowPlanes::newEstimate(const double* normal, double distance) {
+  PlaneEstimate e;
+  for (int i = 0; i < 3; ++i) e.normal[i] = normal[i];
+  e.distance[0] = distance;
+  e.visit = ++visits_;
+  return e;
+}
+
+void WindowPlanes::choose(const FeatureManager& features) {
+  std::map<int, size_t> count;  // tracks per plane label in the window
+  for (const auto& [id, track] : features.tracks())
+    if (track.plane_id > 0) ++count[track.plane_id];
+  if (which_ != HomographyPlanes::kLargest) {
+    used_.clear();
+    if (which_ == HomographyPlanes::kAll)
+      for (const auto& [plane, n] : count) used_.insert(plane);
+    return;
+  }
+  // Largest plane, with hysteresis: the current one stays while it keeps 70% of the best count.
+  int best = -1;
+  size_t best_count = 0;
+  for (const auto& [plane, n] : count)
+    if (n > best_count) best = plane, best_count = n;
+  const int current = used_.empty() ? -1 : *used_.begin();
+  if (current > 0 && count.count(current) && count[current] >= 0.7 * best_count) return;
+  used_.clear();
+  if (best > 0) used_.insert(best);
+}
+
+void WindowPlanes::initialize(const FeatureManager& features, const CameraPoseLookup& cameras,
+                              const Eigen::Vector3d& newest_camera, const PlanesMap& map) {
+  for (int plane : used_) {
+    if (planes_.count(plane)) continue;
+    if (const Plane* known = map.planeOfMask(plane)) {
+      planes_[plane] = newEstimate(known->normal.data(), known->distance);
+      continue;
+    }
+    std::vector<Eigen::Vector3d> points;
+    for (const auto& [id, track] : features.tracks())
+      if (track.plane_id == plane && track.triangulated && track.observations.size() >= 3)
+        points.push_back(features.worldPoint(track, cameras));
+    if (points.size() < kMinPlanePoints) continue;
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const auto& p : points) mean += p / points.size();
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (const auto& p : points) cov += (p - mean) * (p - mean).transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+    const double depth = (mean - newest_camera).norm();
+    if (std::sqrt(eig.eigenvalues()(0) / points.size()) > kMaxPlaneRmsPerDepth * depth) continue;
+    Eigen::Vector3d n = eig.eigenvectors().col(0);
+    if (n.dot(mean) < 0) n = -n;  // convention: d ≥ 0
+    planes_[plane] = newEstimate(n.data(), n.dot(mean));
+  }
+}
+
+std::set<int> WindowPlanes::constrained(const FeatureManager& features) const {
+  std::map<int, size_t> tracks;
+  for (const auto& [id, track] : features.tracks())
+    if (inUse(track)) ++tracks[track.plane_id];
+  std::set<int> labels;
+  for (const auto& [plane, n] : tracks)
+    if (n >= kMinPlanePoints) labels.insert(plane);
+  return labels;
+}
+
+PlaneEstimate* WindowPlanes::homographyPlane(const FeatureTrack& track,
+                                             const std::set<int>& constrained) {
+  const auto plane = planes_.find(track.plane_id);
+  return used_.count(track.plane_id) && constrained.count(track.plane_id) && plane != planes_.end()
+             ? &plane->second
+             : nullptr;
+}
+
+void WindowPlanes::start(const std::map<int, WorldPlane>& planes) {
+  planes_.clear();
+  for (const auto& [mask, plane] : planes) planes_[mask] = newEstimate(plane.n.data(), plane.d);
+}
+
+std::vector<PlaneObservation> WindowPlanes::observations(const FeatureManager& features,
+                                                         const CameraPoseLookup& cameras,
+                                                         double t) const {
+  std::vector<PlaneObservation> out;
+  for (const auto& [mask, estimate] : planes_) {
+    PlaneObservation o;
+    o.mask_id = mask;
+    o.normal = Eigen::Vector3d(estimate.normal).normalized();
+    o.distance = estimate.distance[0];
+    for (const auto& [id, track] : features.tracks())
+      if (track.plane_id == mask && track.triangulated)
+        o.points.push_back(features.worldPoint(track, cameras));
+    if (o.points.size() < kMinPlanePoints) continue;
+    o.covariance =
+        estimate.covariance.value_or(Eigen::Matrix4d::Identity() * kPlaneSigmaPerPoint *
+                                     kPlaneSigmaPerPoint / static_cast<double>(o.points.size()));
+    o.time = t;
+    o.visit = estimate.visit;
+    out.push_back(std::move(o));
+  }
+  return out;
+}
+
+}  // namespace rpvio

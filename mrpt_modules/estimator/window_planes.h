@@ -1,0 +1,65 @@
+#pragma once
+// The planes of the sliding window (DESIGN.md §1 step 4): which ones get homography factors (none,
+// the largest with hysteresis, or all), their parameters when they enter (the planes map's when it
+// knows the label, else a least-squares fit of their triangulated features), and what the window
+// hands the map.
+#include <map>
+#include <set>
+#include <vector>
+
+#include "mrpt_modules/estimator/estimator_options.h"
+#include "mrpt_modules/estimator/estimator_types.h"
+#include "mrpt_modules/estimator/feature_manager.h"
+#include "planes_map/planes_map.h"
+
+namespace rpvio {
+
+/// A plane enters the window, gets homography factors and goes to the map with this many tracks
+/// in use (fewer leave directions of (n, d) unobserved, which a solve then moves at will).
+constexpr size_t kMinPlanePoints = 10;
+
+/// A track in the optimization: triangulated and observed at least twice.
+inline bool inUse(const FeatureTrack& track) {
+  return track.triangulated && track.observations.size() >= 2;
+}
+
+class WindowPlanes {
+ public:
+  explicit WindowPlanes(HomographyPlanes which) : which_(which) {}
+
+  /// By mask label: the planes with parameters in the window.
+  PlaneEstimates& estimates() { return planes_; }
+  const PlaneEstimates& estimates() const { return planes_; }
+  /// The labels whose features get homography factors: none, every plane, or the one with most
+  /// tracks, kept while it has 70% of the best count.
+  void choose(const FeatureManager& features);
+  /// Parameters for the chosen planes without: the map's entry of the label, else a fit of the
+  /// plane's triangulated features (seen 3 times) when at least kMinPlanePoints and planar within
+  /// kMaxPlaneRmsPerDepth of their distance to the newest camera.
+  void initialize(const FeatureManager& features, const CameraPoseLookup& cameras,
+                  const Eigen::Vector3d& newest_camera, const PlanesMap& map);
+  /// Labels with kMinPlanePoints tracks in use or more.
+  std::set<int> constrained(const FeatureManager& features) const;
+  /// The plane whose homography factors the track's observations get (chosen and one of
+  /// `constrained`), or nullptr.
+  PlaneEstimate* homographyPlane(const FeatureTrack& track, const std::set<int>& constrained);
+  /// The planes of a new window (the initializer's).
+  void start(const std::map<int, WorldPlane>& planes);
+  /// Each plane with at least kMinPlanePoints triangulated points, for the map (stamped t).
+  std::vector<PlaneObservation> observations(const FeatureManager& features,
+                                             const CameraPoseLookup& cameras, double t) const;
+  void clear() {
+    planes_.clear();
+    used_.clear();
+  }
+
+ private:
+  PlaneEstimate newEstimate(const double* normal, double distance);
+
+  HomographyPlanes which_;
+  PlaneEstimates planes_;
+  std::set<int> used_;   // labels whose features get homography factors
+  uint64_t visits_ = 0;  // planes that entered the window so far
+};
+
+}  // namespace rpvio
