@@ -26,10 +26,7 @@ struct EstimatorOptions {
   double pixel_sigma = 1.5;   // factor weight: virtual_focal / pixel_sigma
   double cauchy_scale = 1.0;  // robust loss scale, in units of pixel_sigma
   // The window's IMU factors use the calibration's noise densities and random walks times this
-  // factor (VINS-Mono's configs inflate them likewise). Measured with tracked features on the
-  // 80 s simulated sequences, rpvio-single: ATE static / C1 / C4 0.23 / 0.40 / 0.41 m at 3,
-  // 0.41 / 0.42 / 0.52 m at 10, 0.68 m on C1 at 30. (Exact features, tests/estimator: 0.03 m over
-  // 20 s at 3 with pixel_sigma 0.5.)
+  // factor (VINS-Mono's configs inflate them likewise).
   double imu_noise_inflation = 3;
   // IMU gaps: a step between samples longer than this (s) makes the interval's IMU factor this
   // many times noisier (white-noise densities) and keeps it out of the marginalization prior; so
@@ -75,18 +72,16 @@ struct EstimatorOptions {
   // Camera-IMU time offset, estimated once from the first initialization window's rotations
   // (time_offset.h), searched within ±max_time_offset_s. When at least min_time_offset_s and 3
   // sigma, the window is initialized again on the corrected frame times, and the correction kept
-  // if that succeeds. On the simulator without an offset the masked modes estimate -4.3 to +5.3 ms
-  // (sigma 0.8-1.1 ms: the gyroscope's random walk is not white), the unmasked one up to -18 ms
-  // (moving features); 30 ms comes out at 32 ms.
+  // if that succeeds (docs/notes/2026-11-25-faults-and-sanitizers.md: what it estimates on the
+  // simulator).
   bool estimate_time_offset = true;
   double min_time_offset_s = 0.010;
   double max_time_offset_s = 0.05;
   // At the end of a run, one bundle adjustment over all keyframes (batch_refinement.h): the plane
   // map's final (n, d) and trajectory_refined.tum. It keeps every keyframe's observations until
-  // then (about 1 MB per minute at 20 Hz) and costs about 20 s per 80 s simulated sequence.
+  // then (memory grows with the keyframes).
   bool batch_refinement = true;
-  // ... skipped (and said so) beyond this many keyframes: its memory grows with them (355 MB peak
-  // for the 459 keyframes of an 80 s sequence with rpvio-multi, against 91 MB without).
+  // ... skipped (and said so) beyond this many keyframes.
   size_t batch_refinement_max_keyframes = 2000;
   PlanesMapOptions planes_map;  // its own section, [PlanesMap]
 

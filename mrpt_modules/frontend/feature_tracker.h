@@ -28,25 +28,19 @@ struct TrackerOptions {
   // A plane whose detectable pixels could not hold this many features at min_distance gets a
   // tighter spacing (down to one KLT window: closer windows overlap and their errors correlate)
   // and its corners first (plane_feature_budget.h); the total stays max_features. 0 (or less):
-  // one spacing for all (VINS-Mono's detector). With 20, the far rack faces of the static
-  // sequences get 3-4x more observations and every normal of the plane map comes within 1.13 deg
-  // (README, plane map).
+  // one spacing for all (VINS-Mono's detector). Measurements:
+  // docs/notes/2026-11-26-plane-feature-budget.md.
   int min_plane_features = 20;
-  int klt_window = 21;
-  // Pyramid levels above the base image: 2 is three levels (#5). Of 150 tracks on a textured
-  // plane jumping 21.5 px (32 px) between frames they keep 113 (48); 3, VINS-Mono's, keeps 132
-  // (94) at ~1.1x the tracker's time: for fast real sequences.
+  int klt_window = 21;  // px, side of the KLT window
+  // Pyramid levels above the base image (2: three levels); 3 follows larger image motion, for fast
+  // real sequences (docs/notes/2026-11-26-frontend-timing.md).
   int klt_levels = 2;
-  double max_forward_backward_px = 0.5;
+  double max_forward_backward_px = 0.5;  // px
   // KLT's minimum eigenvalue (OpenCV's normalization: the smaller eigenvalue of the window's
   // gradient matrix over its pixel count, gradients in grey levels per px / 32): a track ends when
   // its full-resolution window falls below it (a single edge: the aperture problem); coarse levels
-  // below it are skipped. The test is absolute, so it also ends the tracks of surfaces in shade:
-  // 2e-2 ended 40% of a dark rack face's tracks every frame (seed 1, 1.86 deg / 6.9 cm off in the
-  // map). 5e-3 (an rms gradient of 2.3 grey levels per px across the weakest direction, a 0.04 px
-  // sigma at the simulator's noise of 2) keeps a texture at 0.8x the contrast as well as at full
-  // contrast; on 5 seeds its plane maps were better and the trajectories' shape too, not their
-  // scale (README, KLT's threshold). The optimization is ~1.4x slower (longer tracks).
+  // below it are skipped. The test is absolute, so higher values also end the tracks of surfaces
+  // in shade (docs/notes/2026-11-26-klt-threshold.md).
   double klt_min_eigenvalue = 5e-3;
   bool clahe = false;
   // Outlier rejection between consecutive frames: per plane a homography (masks), else a

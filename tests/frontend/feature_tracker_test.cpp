@@ -85,7 +85,7 @@ std::pair<int, int> tracksOverAJump(const TrackerOptions& options, const Eigen::
 
 TEST(FeatureTracker, DefaultPyramidFollowsATwentyPixelJump) {
   // Three levels (klt_levels = 2) keep 113 of 150 tracks over a 21.5 px jump (48 over 32 px, and
-  // none wrong: README, the tracker's range).
+  // none wrong: docs/notes/2026-11-26-frontend-timing.md).
   const Eigen::Vector2d shift(20, 8);
   const auto [right, wrong] = tracksOverAJump(TrackerOptions{}, shift);
   EXPECT_GT(right, 100);
