@@ -16,18 +16,26 @@
 
 namespace rpvio {
 
-void KeyframeArchive::add(const ArchivedKeyframe& keyframe, const FeatureManager& features,
-                          const std::function<bool(const FeatureTrack&)>& in_use) {
-  keyframes_.push_back(keyframe);
+std::vector<ArchivedObservation> keyframeObservations(
+    uint64_t frame_id, const FeatureManager& features,
+    const std::function<bool(const FeatureTrack&)>& in_use) {
+  std::vector<ArchivedObservation> out;
   for (const auto& [id, track] : features.tracks()) {
     if (!in_use(track)) continue;
     for (const auto& o : track.observations)
-      if (o.frame == keyframe.id) {
-        FeatureTrack& archived = tracks_[id];
-        archived.id = id;
-        archived.plane_id = track.plane_id;
-        archived.observations.push_back(o);
-      }
+      if (o.frame == frame_id) out.push_back({id, track.plane_id, o});
+  }
+  return out;
+}
+
+void KeyframeArchive::add(const ArchivedKeyframe& keyframe,
+                          const std::vector<ArchivedObservation>& observations) {
+  keyframes_.push_back(keyframe);
+  for (const auto& o : observations) {
+    FeatureTrack& archived = tracks_[o.id];
+    archived.id = o.id;
+    archived.plane_id = o.plane_id;
+    archived.observations.push_back(o.observation);
   }
 }
 

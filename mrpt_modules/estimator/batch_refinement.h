@@ -27,11 +27,22 @@ struct ArchivedKeyframe {
   std::shared_ptr<const ImuPreintegration> to_next;  // null: no IMU factor to the next keyframe
 };
 
+/// A track's observation in a keyframe.
+struct ArchivedObservation {
+  int id = -1;  // feature id
+  int plane_id = 0;
+  TrackObservation observation;
+};
+
+/// The observations keyframe `frame_id` holds of the tracks `in_use`.
+std::vector<ArchivedObservation> keyframeObservations(
+    uint64_t frame_id, const FeatureManager& features,
+    const std::function<bool(const FeatureTrack&)>& in_use);
+
 /// Keyframes as they leave the window, with the observations of the tracks in use.
 class KeyframeArchive {
  public:
-  void add(const ArchivedKeyframe& keyframe, const FeatureManager& features,
-           const std::function<bool(const FeatureTrack&)>& in_use);
+  void add(const ArchivedKeyframe& keyframe, const std::vector<ArchivedObservation>& observations);
   /// The newest keyframe gets no IMU factor to the next one (after a reset).
   void breakChain();
   void clear() {

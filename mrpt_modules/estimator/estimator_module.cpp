@@ -17,25 +17,20 @@ namespace rpvio {
 
 void SlidingWindowEstimatorModule::initialize(const IniFile& ini, const std::string& s,
                                               PipelineContext& context) {
-  EstimatorOptions o = loadOptions<EstimatorOptions>(ini, s);
-  o.planes_map = PlanesMapOptions::load(ini, "PlanesMap");
-  estimator_ = std::make_unique<SlidingWindowEstimator>(context.calibration, o);
+  const EstimatorOptions o = loadOptions<EstimatorOptions>(ini, s);
   bus_ = &context.bus;
+  map_sink_ = std::make_unique<BusMapSink>(context.bus);
+  context.bus.subscribe<MapReady>([this](const MapReady& m) { map_sink_->setMap(m.planes_map); });
+  estimator_ = std::make_unique<SlidingWindowEstimator>(context.calibration, o, *map_sink_);
   context.bus.subscribeSensor(labels::kImu, [this](const auto& m) { onImu(m); });
   context.bus.subscribe<FeatureFrame>([this](const FeatureFrame& f) { onFrame(f); });
-  setOptionsText("[" + s + "]\n" + describeOptions(o) + "\n[PlanesMap]\n" +
-                 o.planes_map.describe());
+  setOptionsText("[" + s + "]\n" + describeOptions(o));
 }
 
 void SlidingWindowEstimatorModule::finish() {
   while (!pending_.empty()) processOldestPending();
   estimator_->finishMap();
-  if (!estimator_->refinementReport().empty()) MRPT_LOG_INFO_STREAM(estimator_->refinementReport());
   EstimatorSummary summary;
-  summary.planes_map = &estimator_->planesMap();
-  summary.refined_trajectory = estimator_->refinedTrajectory();
-  summary.refinement_report = estimator_->refinementReport();
-  summary.refinement_s = estimator_->refinementSeconds();
   summary.initialized_at = initialized_at_;
   summary.time_offset_s = estimator_->timeOffset();
   summary.time_offset_note = estimator_->timeOffsetNote();

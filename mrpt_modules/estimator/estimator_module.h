@@ -4,9 +4,9 @@
 // the IMU clock by the time offset: the calibration's, corrected by the estimator's estimate). A
 // frame waits until the IMU stream has reached its time; at the end, the waiting frames are
 // processed with the samples there are. Publishes an EstimatorFrame per frame processed and a
-// StateEstimate per frame once initialized; says once per change why it is not (yet) tracking; at
-// the end, publishes the EstimatorSummary. Options: section [SlidingWindowEstimatorModule] (see
-// EstimatorOptions) and [PlanesMap].
+// StateEstimate per frame once initialized; says once per change why it is not (yet) tracking;
+// publishes what leaves the window for the MapBuilderModule (map_sink.h) and, at the end, the
+// EstimatorSummary. Options: section [SlidingWindowEstimatorModule] (see EstimatorOptions).
 #include <deque>
 #include <memory>
 
@@ -31,6 +31,26 @@ class SlidingWindowEstimatorModule : public Module {
   void processReadyFrames();
   void processOldestPending();
 
+  /// The estimator's map information as messages (to the MapBuilderModule), and the map it
+  /// announced (an empty one without a map builder).
+  class BusMapSink : public MapSink {
+   public:
+    explicit BusMapSink(const Bus& bus) : bus_(bus) {}
+    const PlanesMap& planesMap() const override { return map_ ? *map_ : empty_; }
+    void planesSeen(const PlanesSeen& planes) override { bus_.publish(planes); }
+    void keyframeLeft(const KeyframeLeft& keyframe) override { bus_.publish(keyframe); }
+    void chainBroken() override { bus_.publish(KeyframeChainBroken{}); }
+    void newWorld() override { bus_.publish(NewWorld{}); }
+    void windowFinished(const WindowFinished& end) override { bus_.publish(end); }
+    void setMap(const PlanesMap* map) { map_ = map; }
+
+   private:
+    const Bus& bus_;
+    const PlanesMap* map_ = nullptr;
+    PlanesMap empty_;
+  };
+
+  std::unique_ptr<BusMapSink> map_sink_;
   std::unique_ptr<SlidingWindowEstimator> estimator_;
   const Bus* bus_ = nullptr;
   std::deque<FeatureFrame> pending_;  // frames waiting for the IMU to reach their time

@@ -1,10 +1,8 @@
 #pragma once
-// The options of the sliding-window estimator (section [SlidingWindowEstimatorModule]; the planes
-// map's are [PlanesMap]).
+// The options of the sliding-window estimator (section [SlidingWindowEstimatorModule]).
 #include "common/options.h"
 #include "mrpt_modules/imu/imu_link.h"
 #include "mrpt_modules/initialization/initializer.h"
-#include "planes_map/planes_map.h"
 
 namespace rpvio {
 
@@ -77,13 +75,6 @@ struct EstimatorOptions {
   bool estimate_time_offset = true;
   double min_time_offset_s = 0.010;
   double max_time_offset_s = 0.05;
-  // At the end of a run, one bundle adjustment over all keyframes (batch_refinement.h): the plane
-  // map's final (n, d) and trajectory_refined.tum. It keeps every keyframe's observations until
-  // then (memory grows with the keyframes).
-  bool batch_refinement = true;
-  // ... skipped (and said so) beyond this many keyframes.
-  size_t batch_refinement_max_keyframes = 2000;
-  PlanesMapOptions planes_map;  // its own section, [PlanesMap]
 
   template <class Visitor>
   void fields(Visitor& v) {
@@ -121,8 +112,6 @@ struct EstimatorOptions {
     RPVIO_OPTION(v, estimate_time_offset);
     RPVIO_OPTION(v, min_time_offset_s);
     RPVIO_OPTION(v, max_time_offset_s);
-    RPVIO_OPTION(v, batch_refinement);
-    RPVIO_OPTION(v, batch_refinement_max_keyframes);
   }
   void validate(const OptionsLoader& loader) const;
   ImuLinkOptions imuLinkOptions() const;

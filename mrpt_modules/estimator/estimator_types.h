@@ -32,15 +32,8 @@ struct ResetEvent {
   std::string cause;
 };
 
-class PlanesMap;
-
-/// Published by the estimator module when the run ends, after the map is finished (the window's
-/// planes flushed, duplicates merged, the batch refinement run).
+/// Published by the estimator module when the run ends (after its window went to the map).
 struct EstimatorSummary {
-  const PlanesMap* planes_map = nullptr;
-  std::vector<StateEstimate> refined_trajectory;  // keyframes; empty without a refinement
-  std::string refinement_report;                  // "" if it did not run
-  double refinement_s = 0;
   double initialized_at = -1;  // time of the first pose, -1 if never
   double time_offset_s = 0;
   std::string time_offset_note;

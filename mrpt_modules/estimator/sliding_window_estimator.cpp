@@ -37,14 +37,14 @@ ImuNoise inflatedNoise(ImuNoise noise, double factor) {
 }  // namespace
 
 SlidingWindowEstimator::SlidingWindowEstimator(const Calibration& calibration,
-                                               const EstimatorOptions& options)
+                                               const EstimatorOptions& options, MapSink& map)
     : calib_(calibration),
       options_(options),
       window_imu_noise_(inflatedNoise(calibration.imu, options.imu_noise_inflation)),
       imu_link_(window_imu_noise_, calibration.imu.gravity, options.imuLinkOptions()),
       bootstrapper_(calibration, options, imu_link_),
       planes_(options.homography_planes),
-      planes_map_(options.planes_map) {
+      map_(map) {
   setPoseBlock(calib_.T_BC, mount_);
 }
 
@@ -290,14 +290,12 @@ void SlidingWindowEstimator::dropSecondNewest() {
 }
 
 void SlidingWindowEstimator::flushPlanes() {
-  for (const PlaneObservation& o :
-       planes_.observations(features_, cameraLookup(), window_.back()->features.t))
-    planes_map_.update(o);
+  map_.planesSeen({planes_.observations(features_, cameraLookup(), window_.back()->features.t)});
 }
 
 void SlidingWindowEstimator::archiveKeyframe(const Frame& frame, const Frame* next) {
-  if (!options_.batch_refinement) return;
-  ArchivedKeyframe k;
+  KeyframeLeft left;
+  ArchivedKeyframe& k = left.keyframe;
   k.id = frame.id;
   k.t = frame.features.t;
   std::copy(frame.pose, frame.pose + 7, k.pose);
@@ -305,7 +303,8 @@ void SlidingWindowEstimator::archiveKeyframe(const Frame& frame, const Frame* ne
   // The window's factor, noise inflated (with the calibration's noise the refined trajectories of
   // the simulated static sequences were 1.0-2.3x worse).
   if (next) k.to_next = next->imu_from_previous;
-  keyframe_archive_.add(k, features_, inUse);
+  left.observations = keyframeObservations(frame.id, features_, inUse);
+  map_.keyframeLeft(left);
 }
 
 void SlidingWindowEstimator::finishMap() {
@@ -320,47 +319,15 @@ void SlidingWindowEstimator::finishMap() {
       archiveKeyframe(*window_[k], linked ? window_[k + 1].get() : nullptr);
     }
   }
-  planes_map_.mergeDuplicates();
-  if (options_.batch_refinement) refineBatch();
-}
-
-void SlidingWindowEstimator::refineBatch() {
-  if (keyframe_archive_.size() < 2) return;  // never initialized
-  if (keyframe_archive_.size() > options_.batch_refinement_max_keyframes) {
-    refinement_report_ = "batch refinement skipped: " + std::to_string(keyframe_archive_.size()) +
-                         " keyframes, more than batch_refinement_max_keyframes (" +
-                         std::to_string(options_.batch_refinement_max_keyframes) + ")";
-    return;
-  }
-  std::map<int, PlaneEstimate> planes;
-  for (const Plane& p : planes_map_.confirmedPlanes()) {
-    PlaneEstimate& r = planes[p.id];
-    std::copy(p.normal.data(), p.normal.data() + 3, r.normal);
-    r.distance[0] = p.distance;
-  }
-  BatchRefinementOptions o;
-  o.weight = options_.virtual_focal / options_.pixel_sigma;
-  o.cauchy_scale = options_.cauchy_scale;
-  o.gravity = calib_.imu.gravity;
-  o.min_parallax_rad = options_.min_triangulation_angle_deg * M_PI / 180;
-  o.min_plane_tracks = kMinPlanePoints;
-  BatchRefinement batch(
-      keyframe_archive_, mount_,
-      [this](int label) {
-        const Plane* p = planes_map_.planeOfMask(label);
-        return p ? p->id : 0;
-      },
-      planes, o);
-  const bool solved = batch.solve();
-  refinement_report_ = batch.report();
-  refinement_seconds_ = batch.seconds();
-  if (!solved) {
-    refinement_report_ += " (not usable: the map and trajectory keep the odometry's)";
-    return;
-  }
-  for (const auto& [id, r] : planes)
-    planes_map_.setParameters(id, Eigen::Vector3d(r.normal).normalized(), r.distance[0]);
-  refined_trajectory_ = keyframe_archive_.trajectory();
+  // The batch refinement weighs its factors as the window does.
+  WindowFinished end;
+  end.refinement.weight = options_.virtual_focal / options_.pixel_sigma;
+  end.refinement.cauchy_scale = options_.cauchy_scale;
+  end.refinement.gravity = calib_.imu.gravity;
+  end.refinement.min_parallax_rad = options_.min_triangulation_angle_deg * M_PI / 180;
+  end.refinement.min_plane_tracks = kMinPlanePoints;
+  std::copy(mount_, mount_ + 7, end.mount);
+  map_.windowFinished(end);
 }
 
 void SlidingWindowEstimator::startWindow(const InitializedWindow& init) {
@@ -397,7 +364,7 @@ void SlidingWindowEstimator::startWindow(const InitializedWindow& init) {
           bootstrapper_.reconnect(window_.front()->features.t, window_.front()->pose))
     moveWindow(*shift);
   else
-    keyframe_archive_.clear();
+    map_.newWorld();
   initialized_ = true;
   last_seen_features_t_ = window_.back()->features.t;
   planes_.choose(features_);
@@ -430,7 +397,7 @@ void SlidingWindowEstimator::reset(const std::string& cause,
   status_detail_ = status_;
   report_.state = "reset";
   initialized_ = false;
-  keyframe_archive_.breakChain();  // the window's frames, the link's other end, are dropped
+  map_.chainBroken();  // the window's frames, the link's other end, are dropped
   window_.clear();
   features_.clear();
   prior_.reset();
@@ -484,7 +451,7 @@ std::optional<StateEstimate> SlidingWindowEstimator::addFrame(
   features_.triangulate(cameraLookup(), options_.min_triangulation_angle_deg * M_PI / 180,
                         kMinDepth, kMaxDepth);
   planes_.initialize(features_, cameraLookup(), camera(window_.back()->id).translation(),
-                     planes_map_);
+                     map_.planesMap());
   // The planes go to the map after the oldest frame's marginalization.
   optimize(keyframe && window_.size() > options_.window_size + 1);
   rejectDepthOutliers();

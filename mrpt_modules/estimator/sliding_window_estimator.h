@@ -35,6 +35,7 @@
 #include "mrpt_modules/estimator/estimator_options.h"
 #include "mrpt_modules/estimator/estimator_types.h"
 #include "mrpt_modules/estimator/feature_manager.h"
+#include "mrpt_modules/estimator/map_sink.h"
 #include "mrpt_modules/estimator/window_planes.h"
 #include "mrpt_modules/factors/marginalization.h"
 #include "mrpt_modules/imu/imu_link.h"
@@ -45,7 +46,10 @@ namespace rpvio {
 
 class SlidingWindowEstimator {
  public:
-  SlidingWindowEstimator(const Calibration& calibration, const EstimatorOptions& options);
+  /// `map`: where planes and keyframes go as they leave the window (the map builder), and where
+  /// the planes of labels seen again come from.
+  SlidingWindowEstimator(const Calibration& calibration, const EstimatorOptions& options,
+                         MapSink& map);
   SlidingWindowEstimator(const SlidingWindowEstimator&) = delete;  // the bootstrapper refers to
   SlidingWindowEstimator& operator=(const SlidingWindowEstimator&) = delete;  // the IMU link
 
@@ -64,28 +68,17 @@ class SlidingWindowEstimator {
   const std::string& statusDetail() const { return status_detail_; }
   const FrameReport& lastReport() const { return report_; }
   const PlaneEstimates& planes() const { return planes_.estimates(); }
-  const PlanesMap& planesMap() const { return planes_map_; }
   /// t_imu = t_frame + timeOffset(): the calibration's offset plus the estimated correction.
   double timeOffset() const { return bootstrapper_.timeOffset(); }
   /// What the time-offset estimation found ("" before it ran).
   const std::string& timeOffsetNote() const { return bootstrapper_.timeOffsetNote(); }
-  /// Once, at the end of a run: the window's current planes into the map (the visits under way
-  /// end), then the map's duplicates merged (a plane whose visit started too far from its entry to
-  /// be associated got a new one; their estimates have converged since), then the batch
-  /// refinement (`batch_refinement`).
+  /// Once, at the end of a run: the window's current planes and keyframes to the map, then
+  /// WindowFinished (the map merges its duplicates and runs the batch refinement).
   void finishMap();
-  /// After finishMap(): the keyframes' body poses from the batch refinement (empty if it did not
-  /// run or failed), and its summary.
-  const std::vector<StateEstimate>& refinedTrajectory() const { return refined_trajectory_; }
-  const std::string& refinementReport() const { return refinement_report_; }
-  double refinementSeconds() const { return refinement_seconds_; }
 
  private:
-  /// Writes the window's current planes into the map (done as keyframes leave the window).
+  /// The window's current planes to the map (done as keyframes leave the window).
   void flushPlanes();
-  /// The batch refinement over the archived keyframes (batch_refinement.h): the map's planes and
-  /// refinedTrajectory().
-  void refineBatch();
   struct Frame {
     uint64_t id = 0;
     FeatureFrame features;
@@ -108,7 +101,7 @@ class SlidingWindowEstimator {
   void rejectDepthOutliers();
   std::string failure(const double* predicted_pose) const;
   void marginalizeOldest();
-  /// A keyframe into the archive the batch refinement solves, with its IMU link to the next one.
+  /// A keyframe leaving the window to the map, with its IMU link to the next one.
   void archiveKeyframe(const Frame& frame, const Frame* next);
   void forgetUnseenPlanes();
   void dropSecondNewest();
@@ -133,11 +126,7 @@ class SlidingWindowEstimator {
   FeatureManager features_;
   std::shared_ptr<const MarginalizationPrior> prior_;
   WindowPlanes planes_;
-  PlanesMap planes_map_;
-  KeyframeArchive keyframe_archive_;
-  std::vector<StateEstimate> refined_trajectory_;
-  std::string refinement_report_;
-  double refinement_seconds_ = 0;
+  MapSink& map_;
   double last_seen_features_t_ = 0;
 };
 

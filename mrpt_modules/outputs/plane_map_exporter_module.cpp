@@ -22,7 +22,7 @@ void PlaneMapExporterModule::initialize(const IniFile& ini, const std::string& s
   options_ = loadOptions<PlaneMapExportOptions>(ini, section);
   output_dir_ = context.output_dir;
   context.bus.subscribe<StateEstimate>([this](const StateEstimate& s) { odometry_.push_back(s); });
-  context.bus.subscribe<EstimatorSummary>([this](const EstimatorSummary& s) { summary_ = s; });
+  context.bus.subscribe<MapSummary>([this](const MapSummary& s) { summary_ = s; });
   setOptionsText("[" + section + "]\n" + describeOptions(options_));
 }
 

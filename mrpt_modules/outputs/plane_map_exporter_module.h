@@ -1,5 +1,5 @@
 #pragma once
-// Output module: the finished plane map (EstimatorSummary) exported into the pipeline's output
+// Output module: the finished plane map (MapSummary) exported into the pipeline's output
 // folder: planes.yaml, planes.ply, planes.bt (OctoMap), planes.3Dscene and planes_topview.png
 // (drawn with the refined trajectory when there is one, else the odometry's). Options: section
 // [PlaneMapExporterModule] (PlaneMapExportOptions).
@@ -9,6 +9,7 @@
 
 #include "mrpt_modules/core/module.h"
 #include "mrpt_modules/estimator/estimator_types.h"
+#include "mrpt_modules/estimator/map_sink.h"
 
 namespace rpvio {
 
@@ -36,7 +37,7 @@ class PlaneMapExporterModule : public Module {
   PlaneMapExportOptions options_;
   std::string output_dir_;
   std::vector<StateEstimate> odometry_;
-  std::optional<EstimatorSummary> summary_;
+  std::optional<MapSummary> summary_;
 };
 
 }  // namespace rpvio

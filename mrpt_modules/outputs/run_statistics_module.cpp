@@ -63,6 +63,7 @@ void RunStatisticsModule::initialize(const IniFile&, const std::string& section,
   context.bus.subscribe<StateEstimate>([this](const StateEstimate&) { ++poses_; });
   context.bus.subscribe<RunEnd>([this](const RunEnd& e) { end_ = e; });
   context.bus.subscribe<EstimatorSummary>([this](const EstimatorSummary& s) { estimator_ = s; });
+  context.bus.subscribe<MapSummary>([this](const MapSummary& s) { map_ = s; });
   setOptionsText("[" + section + "]\n");
 }
 
@@ -103,9 +104,10 @@ void RunStatisticsModule::write(double wall) const {
   });
   const double sequence_s = rows_.size() < 2 ? 0 : rows_.back().t - rows_.front().t;
   const EstimatorSummary e = estimator_.value_or(EstimatorSummary{});
-  const double odometry_wall = wall - e.refinement_s;  // the refinement runs after the rawlog
-  const size_t map_planes = e.planes_map ? e.planes_map->confirmedPlanes().size() : 0;
-  const size_t tentative_planes = e.planes_map ? e.planes_map->planes().size() - map_planes : 0;
+  const MapSummary m = map_.value_or(MapSummary{});
+  const double odometry_wall = wall - m.refinement_s;  // the refinement runs after the rawlog
+  const size_t map_planes = m.planes_map ? m.planes_map->confirmedPlanes().size() : 0;
+  const size_t tentative_planes = m.planes_map ? m.planes_map->planes().size() - map_planes : 0;
   JsonObject summary;
   summary.flag("complete", end_.complete)
       .text("input_error", end_.input_error)
@@ -131,8 +133,8 @@ void RunStatisticsModule::write(double wall) const {
       .number("peak_memory_mb", peakMemoryMb())
       .number("map_planes", static_cast<double>(map_planes))
       .number("tentative_planes", static_cast<double>(tentative_planes))
-      .number("refinement_s", e.refinement_s)
-      .text("refinement", e.refinement_report)
+      .number("refinement_s", m.refinement_s)
+      .text("refinement", m.refinement_report)
       .text("status", estimator_ ? e.status : "no estimator");
   writeFileAtomically(path("summary.json"), [&](std::ostream& s) { s << summary.str(); });
 }

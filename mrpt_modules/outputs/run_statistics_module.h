@@ -5,7 +5,8 @@
 //                 total_ms (wall time from the previous frame's end to this one's), features,
 //                 planes, state (the frame's EstimatorFrame, in order)
 //   summary.json  frames, poses, completeness (RunEnd), the estimator's summary (initialization,
-//                 time offset, resets, map size, batch refinement, last status), timing medians
+//                 time offset, resets, last status), the map's (MapSummary: size, batch
+//                 refinement), timing medians
 //                 and 95th percentiles, real-time factor, peak memory.
 // Listed after the modules it records: it sees each frame once they have processed it.
 #include <chrono>
@@ -14,6 +15,7 @@
 #include "mrpt_modules/core/module.h"
 #include "mrpt_modules/core/run_messages.h"
 #include "mrpt_modules/estimator/estimator_types.h"
+#include "mrpt_modules/estimator/map_sink.h"
 
 namespace rpvio {
 
@@ -49,6 +51,7 @@ class RunStatisticsModule : public Module {
   size_t poses_ = 0;
   RunEnd end_;
   std::optional<EstimatorSummary> estimator_;
+  std::optional<MapSummary> map_;
 };
 
 }  // namespace rpvio

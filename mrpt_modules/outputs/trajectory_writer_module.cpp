@@ -34,8 +34,8 @@ void TrajectoryWriterModule::initialize(const IniFile&, const std::string& secti
   output_dir_ = context.output_dir;
   context.bus.subscribe<StateEstimate>(
       [this](const StateEstimate& s) { odometry_.push_back(stampedPose(s)); });
-  context.bus.subscribe<EstimatorSummary>(
-      [this](const EstimatorSummary& s) { refined_ = toTrajectory(s.refined_trajectory); });
+  context.bus.subscribe<MapSummary>(
+      [this](const MapSummary& s) { refined_ = toTrajectory(s.refined_trajectory); });
   setOptionsText("[" + section + "]\n");
 }
 

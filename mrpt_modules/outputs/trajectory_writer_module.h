@@ -1,9 +1,10 @@
 #pragma once
 // Output module: the odometry's trajectory (trajectory.tum, every StateEstimate: body in world)
-// and the batch refinement's keyframes (trajectory_refined.tum, from the EstimatorSummary, when
-// the refinement ran), written into the pipeline's output folder at the end of the run.
+// and the batch refinement's keyframes (trajectory_refined.tum, from the MapSummary, when the
+// refinement ran), written into the pipeline's output folder at the end of the run.
 #include "mrpt_modules/core/module.h"
 #include "mrpt_modules/estimator/estimator_types.h"
+#include "mrpt_modules/estimator/map_sink.h"
 
 namespace rpvio {
 

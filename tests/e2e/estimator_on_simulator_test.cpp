@@ -7,6 +7,7 @@
 #include "apps/lib/sim_app.h"
 #include "evaluation/plane_map_accuracy.h"
 #include "evaluation/trajectory_metrics.h"
+#include "mrpt_modules/estimator/map_builder.h"
 #include "mrpt_modules/estimator/sliding_window_estimator.h"
 #include "mrpt_modules/frontend/feature_tracker.h"
 #include "sim/simulator.h"
@@ -31,7 +32,8 @@ SimulatorRun runOnSimulator(int characters, double duration,
   FeatureTracker tracker(sim.calibration().camera, TrackerOptions{});
   EstimatorOptions options;
   options.homography_planes = homography;
-  SlidingWindowEstimator estimator(sim.calibration(), options);
+  MapBuilder map(PlanesMapOptions{}, MapBuilderOptions{});
+  SlidingWindowEstimator estimator(sim.calibration(), options, map);
   SimulatorRun run;
   Trajectory estimate, truth;
   size_t previous = 0;
@@ -63,7 +65,7 @@ SimulatorRun runOnSimulator(int characters, double duration,
   opt.align = eval::AlignMode::SE3;
   run.trajectory = eval::evaluate(truth, estimate, opt);
   run.planes =
-      eval::evaluatePlaneMap(estimator.planesMap().confirmedPlanes(),
+      eval::evaluatePlaneMap(map.planesMap().confirmedPlanes(),
                              apps::truePlanes(sim.scene(), duration), run.trajectory.alignment);
   return run;
 }

@@ -10,6 +10,7 @@
 #include <random>
 #include <string>
 
+#include "mrpt_modules/estimator/map_builder.h"
 #include "mrpt_modules/estimator/sliding_window_estimator.h"
 #include "sim/simulator.h"
 
@@ -111,8 +112,10 @@ RunResult run(HomographyPlanes homography, double duration, const Revisit* revis
   EstimatorOptions options;
   options.pixel_sigma = 0.5;  // the features are exact: the default 1.5 px under-weights them
   options.homography_planes = homography;
-  options.batch_refinement_max_keyframes = max_refined_keyframes;
-  SlidingWindowEstimator estimator(calib, options);
+  MapBuilderOptions map_options;
+  map_options.batch_refinement_max_keyframes = max_refined_keyframes;
+  MapBuilder map(PlanesMapOptions{}, map_options);
+  SlidingWindowEstimator estimator(calib, options, map);
   // Every second, a 12x10 grid of pixels cast into the scene gives landmarks seen for 3 s.
   std::vector<Landmark> landmarks;
   const double kLifetime = 3.0;
@@ -185,9 +188,9 @@ RunResult run(HomographyPlanes homography, double duration, const Revisit* revis
   for (const WindowPlane& w : window_planes) addPlaneError(sim, causal, w, result.window);
   if (!refine) return result;
   estimator.finishMap();
-  result.refinement_report = estimator.refinementReport();
+  result.refinement_report = map.refinementReport();
   std::vector<Eigen::Vector3d> refined, refined_truth;
-  for (const StateEstimate& s : estimator.refinedTrajectory()) {
+  for (const StateEstimate& s : map.refinedTrajectory()) {
     refined.emplace_back(s.pose[0], s.pose[1], s.pose[2]);
     refined_truth.push_back(sim.bodyPose(s.t).translation());
   }
@@ -196,7 +199,7 @@ RunResult run(HomographyPlanes homography, double duration, const Revisit* revis
   result.shape_rmse = align(estimated, truth, true).rmse;
   const Alignment batch = align(refined, refined_truth, true);
   result.refined_shape_rmse = batch.rmse;
-  for (const Plane& p : estimator.planesMap().confirmedPlanes())
+  for (const Plane& p : map.planesMap().confirmedPlanes())
     if (*p.mask_ids.begin() <= kLastRoomPlane && p.last_seen - p.first_seen > 2.0)
       addPlaneError(sim, batch, {*p.mask_ids.begin(), p.normal, p.distance}, result.map);
   return result;

@@ -4,6 +4,7 @@
 #include "common/input_error.h"
 #include "mrpt_modules/core/pipeline.h"
 #include "mrpt_modules/estimator/estimator_module.h"
+#include "mrpt_modules/estimator/map_sink.h"
 #include "mrpt_modules/frontend/feature_tracker_module.h"
 #include "rawlog_io/calibration.h"
 #include "sim/sequence_writer.h"
@@ -32,6 +33,31 @@ TEST(Pipeline, RpvioConfigTracksASimulatedRawlog) {
     const bool masked = std::string(mode) != "vins-mono";
     for (const auto& f : frames.back().features) EXPECT_EQ(f.plane_id > 0, masked);
   }
+}
+
+TEST(Pipeline, TheEstimatorRunsWithoutAMapBuilder) {
+  // No MapBuilderModule: the keyframes and planes leaving the window go nowhere, no plane is
+  // taken from a map, and the estimator tracks all the same.
+  test::TempDir dir;
+  sim::SimConfig config;
+  config.duration = 4.0;
+  sim::writeSequence(config, dir.path().string());
+  test::writeText(dir.file("mode.ini"),
+                  "[Pipeline]\nmodules = FeatureTrackerModule, SlidingWindowEstimatorModule\n");
+  Pipeline pipeline(dir.file("mode.ini"), loadCalibration(dir.file("calib.ini")),
+                    mrpt::system::LVL_WARN);
+  size_t poses = 0, keyframes_left = 0;
+  bool summary = false;
+  pipeline.context().bus.subscribe<StateEstimate>([&](const StateEstimate&) { ++poses; });
+  pipeline.context().bus.subscribe<KeyframeLeft>([&](const KeyframeLeft&) { ++keyframes_left; });
+  pipeline.context().bus.subscribe<EstimatorSummary>([&](const EstimatorSummary& s) {
+    summary = true;
+    EXPECT_EQ(s.status, "tracking");
+  });
+  pipeline.play(dir.file("seq.rawlog"));
+  EXPECT_GT(poses, 30u);           // initialized after 2 s, every frame afterwards
+  EXPECT_GT(keyframes_left, 10u);  // marginalized keyframes and the final window
+  EXPECT_TRUE(summary);
 }
 
 TEST(Pipeline, UnknownModuleIsABadConfig) {
