@@ -14,6 +14,7 @@ sim: common/ rawlog_io/ sim/
 planes_map: common/ planes_map/
 mrpt_modules/imu: common/ mrpt_modules/imu/
 mrpt_modules/factors: common/ mrpt_modules/imu/ mrpt_modules/factors/
+mrpt_modules/outputs: common/ rawlog_io/trajectory_io.h planes_map/ mrpt_modules/
 mrpt_modules: common/ rawlog_io/rawlog_labels.h rawlog_io/rawlog_reader.h rawlog_io/mrpt_conversions.h rawlog_io/uniform_plane_region.h planes_map/ mrpt_modules/
 evaluation: common/ rawlog_io/uniform_plane_region.h rawlog_io/rawlog_labels.h planes_map/ evaluation/
 "

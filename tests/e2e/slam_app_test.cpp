@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <map>
 #include <sstream>
 
 #include "rawlog_io/calibration.h"
@@ -19,16 +21,22 @@
 namespace rpvio {
 namespace {
 
+/// rpvio-slam in a mode (config/<mode>.ini) on a simulated sequence folder's calib.ini and rawlog
+/// (its seq.rawlog unless given), quiet, ending in "--out " (the caller adds the folder).
+std::string slamCommand(const std::string& mode, const std::string& sequence_dir,
+                        const std::string& rawlog = "") {
+  return test::binDir() + "/rpvio-slam --config " + RPVIO_SOURCE_DIR + "/config/" + mode +
+         ".ini --calib " + sequence_dir + "/calib.ini --rawlog " +
+         (rawlog.empty() ? sequence_dir + "/seq.rawlog" : rawlog) + " --quiet --out ";
+}
+
 TEST(SlamApp, WritesOutputsAndIsDeterministic) {
   test::TempDir dir;
   sim::SimConfig config;
   config.duration = 6.0;
   config.scene.characters = 2;
   sim::writeSequence(config, dir.file("seq"));
-  const std::string slam = test::binDir() + "/rpvio-slam --config " +
-                           std::string(RPVIO_SOURCE_DIR) + "/config/rpvio-single.ini --calib " +
-                           dir.file("seq/calib.ini") + " --rawlog " + dir.file("seq/seq.rawlog") +
-                           " --quiet --out ";
+  const std::string slam = slamCommand("rpvio-single", dir.file("seq"));
   std::string out;
   ASSERT_EQ(test::runCommand(slam + dir.file("a"), out), 0) << out;
   ASSERT_EQ(test::runCommand(slam + dir.file("b"), out), 0) << out;
@@ -38,10 +46,7 @@ TEST(SlamApp, WritesOutputsAndIsDeterministic) {
             test::readFile(dir.file("b/trajectory.tum")));
   // rpvio-multi too (its plane covariances), the second run with its heap elsewhere: nothing may
   // depend on where blocks are allocated.
-  const std::string multi = test::binDir() + "/rpvio-slam --config " +
-                            std::string(RPVIO_SOURCE_DIR) + "/config/rpvio-multi.ini --calib " +
-                            dir.file("seq/calib.ini") + " --rawlog " + dir.file("seq/seq.rawlog") +
-                            " --quiet --out ";
+  const std::string multi = slamCommand("rpvio-multi", dir.file("seq"));
   ASSERT_EQ(test::runCommand(multi + dir.file("m1"), out), 0) << out;
   ASSERT_EQ(
       test::runCommand(
@@ -86,9 +91,7 @@ TEST(SlamApp, TruncatedRawlogKeepsTheFramesBeforeIt) {
   config.duration = 5.0;
   sim::writeSequence(config, dir.file("seq"));
   const std::string rawlog = dir.file("seq/seq.rawlog");
-  const std::string slam = test::binDir() + "/rpvio-slam --config " +
-                           std::string(RPVIO_SOURCE_DIR) + "/config/rpvio-single.ini --calib " +
-                           dir.file("seq/calib.ini") + " --rawlog " + rawlog + " --quiet --out ";
+  const std::string slam = slamCommand("rpvio-single", dir.file("seq"));
   std::string out;
   ASSERT_EQ(test::runCommand(slam + dir.file("whole"), out), 0) << out;
   // Cut inside an entry three quarters of the way: the recording ends mid-write.
@@ -110,24 +113,30 @@ TEST(SlamApp, TruncatedRawlogKeepsTheFramesBeforeIt) {
   EXPECT_TRUE(std::filesystem::exists(dir.file("cut/planes.yaml")));
 }
 
-/// A copy of a rawlog without the observations of `label`.
+/// A copy of a rawlog without the observations of `label`, its masks stamped `mask_delay` s later
+/// (the observations written in time order).
 void copyWithout(const std::string& from, const std::string& to, const std::string& label,
-                 const Calibration& calibration) {
+                 const Calibration& calibration, double mask_delay = 0) {
   RawlogReader reader(from);
-  std::filesystem::create_directories(std::filesystem::path(to).parent_path());
-  RawlogWriter writer(to, calibration);
+  std::multimap<double, std::function<void(RawlogWriter&)>> entries;  // by time, stable
   while (const auto obs = reader.next()) {
     if (obs->sensorLabel == label) continue;
     const double t = toSeconds(obs->timestamp);
     if (const auto* image = dynamic_cast<const mrpt::obs::CObservationImage*>(obs.get())) {
+      const cv::Mat pixels = loadGrayImage(*image, reader);
       if (obs->sensorLabel == labels::kCamera)
-        writer.addImage(t, loadGrayImage(*image, reader));
+        entries.emplace(t, [t, pixels](RawlogWriter& w) { w.addImage(t, pixels); });
       else
-        writer.addMask(t, loadGrayImage(*image, reader));
+        entries.emplace(t + mask_delay,
+                        [t = t + mask_delay, pixels](RawlogWriter& w) { w.addMask(t, pixels); });
     } else if (const auto* imu = dynamic_cast<const mrpt::obs::CObservationIMU*>(obs.get())) {
-      writer.addImu(toImuSample(*imu, reader));
+      const ImuSample sample = toImuSample(*imu, reader);
+      entries.emplace(t, [sample](RawlogWriter& w) { w.addImu(sample); });
     }
   }
+  std::filesystem::create_directories(std::filesystem::path(to).parent_path());
+  RawlogWriter writer(to, calibration);
+  for (const auto& [t, write] : entries) write(writer);
   writer.close();
 }
 
@@ -140,10 +149,10 @@ TEST(SlamApp, ARawlogWithoutWhatTheModeNeedsIsBadInputNamingIt) {
   copyWithout(dir.file("seq/seq.rawlog"), dir.file("nomask/seq.rawlog"), labels::kPlaneMask,
               calibration);
   copyWithout(dir.file("seq/seq.rawlog"), dir.file("noimu/seq.rawlog"), labels::kImu, calibration);
+  copyWithout(dir.file("seq/seq.rawlog"), dir.file("nocam/seq.rawlog"), labels::kCamera,
+              calibration);
   const auto slam = [&](const char* mode, const std::string& rawlog, const std::string& out_dir) {
-    return test::binDir() + "/rpvio-slam --config " + std::string(RPVIO_SOURCE_DIR) + "/config/" +
-           mode + ".ini --calib " + dir.file("seq/calib.ini") + " --rawlog " + rawlog +
-           " --quiet --out " + out_dir;
+    return slamCommand(mode, dir.file("seq"), rawlog) + out_dir;
   };
   std::string out;
   // A masked mode on a rawlog without masks: one line naming the rawlog, the label and the mode
@@ -167,6 +176,59 @@ TEST(SlamApp, ARawlogWithoutWhatTheModeNeedsIsBadInputNamingIt) {
       << out;
   EXPECT_NE(out.find(dir.file("noimu/seq.rawlog") + ": no IMU observation"), std::string::npos)
       << out;
+  // Without images, no mode runs.
+  EXPECT_EQ(test::runCommand(slam("vins-mono", dir.file("nocam/seq.rawlog"), dir.file("o4")), out),
+            2)
+      << out;
+  EXPECT_NE(out.find(dir.file("nocam/seq.rawlog") + ": no CAM0 observation"), std::string::npos)
+      << out;
+}
+
+TEST(SlamApp, ARawlogWhoseFramesNeverReachTheEstimatorIsBadInput) {
+  // Every mask 1 ms after its image: no image is ever paired with its mask, so no frame is
+  // processed; the run says so on one line and exits 2.
+  test::TempDir dir;
+  sim::SimConfig config;
+  config.duration = 1.0;
+  sim::writeSequence(config, dir.file("seq"));
+  copyWithout(dir.file("seq/seq.rawlog"), dir.file("late/seq.rawlog"), "",
+              loadCalibration(dir.file("seq/calib.ini")), 0.001);
+  std::string out;
+  EXPECT_EQ(
+      test::runCommand(
+          slamCommand("rpvio-single", dir.file("seq"), dir.file("late/seq.rawlog")) + dir.file("o"),
+          out),
+      2)
+      << out;
+  EXPECT_NE(out.find("rpvio-slam: error: " + dir.file("late/seq.rawlog") +
+                     ": no frame was processed (last status: "),
+            std::string::npos)
+      << out;
+}
+
+TEST(SlamApp, AnOutputThatCannotBeWrittenIsBadInputAndNothingIsHalfWritten) {
+  // trajectory.tum's temporary name is taken by a folder: that output cannot be written (as on a
+  // full disk). One line naming it, exit 2; the outputs written are whole, none is left temporary.
+  test::TempDir dir;
+  sim::SimConfig config;
+  config.duration = 3.0;
+  sim::writeSequence(config, dir.file("seq"));
+  std::filesystem::create_directories(dir.file("o/trajectory.tum.tmp"));
+  std::string out;
+  EXPECT_EQ(test::runCommand(slamCommand("rpvio-single", dir.file("seq")) + dir.file("o"), out), 2)
+      << out;
+  EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1) << out;
+  EXPECT_NE(out.find("rpvio-slam: error: " + dir.file("o") + ": writing the outputs failed: " +
+                     dir.file("o/trajectory.tum") + ": cannot open for writing"),
+            std::string::npos)
+      << out;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("o/trajectory.tum")));
+  const std::string summary = test::readFile(dir.file("o/summary.json"));
+  EXPECT_EQ(summary.back(), '\n');  // written whole, before the failing writer
+  EXPECT_NE(summary.find("\"status\": "), std::string::npos);
+  for (const auto& entry : std::filesystem::directory_iterator(dir.file("o")))
+    if (entry.path().extension() == ".tmp")
+      EXPECT_TRUE(entry.is_directory()) << entry.path();  // only the folder put there
 }
 
 TEST(SlamApp, AnOutputPathThatCannotBeAFolderIsBadInput) {
@@ -174,10 +236,7 @@ TEST(SlamApp, AnOutputPathThatCannotBeAFolderIsBadInput) {
   sim::SimConfig config;
   config.duration = 1.0;
   sim::writeSequence(config, dir.file("seq"));
-  const std::string slam = test::binDir() + "/rpvio-slam --config " +
-                           std::string(RPVIO_SOURCE_DIR) + "/config/rpvio-single.ini --calib " +
-                           dir.file("seq/calib.ini") + " --rawlog " + dir.file("seq/seq.rawlog") +
-                           " --quiet --out ";
+  const std::string slam = slamCommand("rpvio-single", dir.file("seq"));
   std::string out;
   test::writeText(dir.file("a-file"), "keep me\n");
   EXPECT_EQ(test::runCommand(slam + dir.file("a-file"), out), 2) << out;
@@ -198,12 +257,7 @@ TEST(SlamApp, ARunThatNeverInitializesSaysWhy) {
   config.duration = 1.0;  // shorter than the 2 s initialization window
   sim::writeSequence(config, dir.file("seq"));
   std::string out;
-  ASSERT_EQ(test::runCommand(
-                test::binDir() + "/rpvio-slam --config " + std::string(RPVIO_SOURCE_DIR) +
-                    "/config/rpvio-single.ini --calib " + dir.file("seq/calib.ini") + " --rawlog " +
-                    dir.file("seq/seq.rawlog") + " --quiet --out " + dir.file("o"),
-                out),
-            0)
+  ASSERT_EQ(test::runCommand(slamCommand("rpvio-single", dir.file("seq")) + dir.file("o"), out), 0)
       << out;
   EXPECT_NE(out.find("no pose: never initialized (last status: "), std::string::npos) << out;
   const std::string summary = test::readFile(dir.file("o/summary.json"));
