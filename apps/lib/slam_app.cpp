@@ -27,10 +27,11 @@ namespace {
 const char* kUsage =
     "usage: rpvio-slam --config config/<mode>.ini --calib DIR/calib.ini --rawlog DIR/seq.rawlog\n"
     "                  --out OUTDIR [--quiet] [--threads N]\n"
-    "  Plays the rawlog through the modules of the config and writes to OUTDIR:\n"
+    "  Plays the rawlog through the modules of the config. OUTDIR gets config_used.ini and what\n"
+    "  the config's output modules write (those of the shipped configs: docs/data-formats.md):\n"
     "    trajectory.tum  body in world, every frame once initialized (a reset leaves a gap)\n"
     "    trajectory_refined.tum  the keyframes after the batch refinement at the end of the run\n"
-    "                    (batch_refinement = true in the config), in the plane map's frame\n"
+    "                    ([MapBuilderModule] batch_refinement = true), in the plane map's frame\n"
     "    stats.csv       per frame: t, load_ms (image and mask decoding), frontend_ms,\n"
     "                    optimization_ms, total_ms (wall time from the previous frame's end to\n"
     "                    this one's, the sum of the three: a frame still waiting for IMU data\n"
