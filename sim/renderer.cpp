@@ -33,7 +33,7 @@ RenderedFrame renderFrame(const WarehouseScene& scene, const PinholeCamera& cam,
                           const Eigen::Isometry3d& T_WC, const RenderOptions& opt,
                           uint64_t noise_seed) {
   const int W = cam.width, H = cam.height;
-  cv::Mat intensity(H, W, CV_32F), labels(H, W, CV_8U);
+  cv::Mat intensity(H, W, CV_32F), labels(H, W, CV_8U), dynamic(H, W, CV_8U);
   const double footprint_per_depth = 1.0 / cam.fx;  // one pixel at depth 1 m
   const int k = std::max(1, opt.supersampling);
   const WarehouseScene::PlanesInView view = scene.planesInView(T_WC.translation());
@@ -46,6 +46,7 @@ RenderedFrame renderFrame(const WarehouseScene& scene, const PinholeCamera& cam,
     for (int c = 0; c < W; ++c) {
       const SceneHit centre = shade(c, r);
       labels.at<uint8_t>(r, c) = static_cast<uint8_t>(centre.label);
+      dynamic.at<uint8_t>(r, c) = centre.dynamic ? 255 : 0;
       if (opt.supersampling <= 0) {
         intensity.at<float>(r, c) = centre.intensity;
         continue;
@@ -94,6 +95,7 @@ RenderedFrame renderFrame(const WarehouseScene& scene, const PinholeCamera& cam,
   RenderedFrame frame;
   intensity.convertTo(frame.image, CV_8U);  // rounds and saturates to 0..255
   frame.mask = labels;
+  frame.dynamic = dynamic;
   return frame;
 }
 

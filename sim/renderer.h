@@ -22,8 +22,9 @@ struct RenderOptions {
 };
 
 struct RenderedFrame {
-  cv::Mat image;  // CV_8UC1
-  cv::Mat mask;   // CV_8UC1 labels (see warehouse_scene.h)
+  cv::Mat image;    // CV_8UC1
+  cv::Mat mask;     // CV_8UC1 labels (see warehouse_scene.h)
+  cv::Mat dynamic;  // CV_8UC1, 255 where the pixel centre sees a moving thing (ground truth)
 };
 
 /// Renders the scene as posed (WarehouseScene::setTime) from camera pose T_WC (camera in world).

@@ -125,6 +125,7 @@ SceneHit WarehouseScene::cast(const PlanesInView& view, const Eigen::Vector3d& d
       hit.point = c->point;
       hit.label = kMaskCharacter;
       hit.character = static_cast<int>(k);
+      hit.dynamic = true;
       hit.intensity =
           c->albedo * (0.4f + 0.6f * static_cast<float>(std::max(0.0, c->normal.dot(kLight))));
       best = nullptr;
@@ -133,6 +134,7 @@ SceneHit WarehouseScene::cast(const PlanesInView& view, const Eigen::Vector3d& d
   if (best) {
     hit.point = o + hit.t * d;
     hit.label = best->id;
+    hit.dynamic = false;
     // Footprint grows as the surface tilts away; the square root keeps grazing floors sharp.
     const double cos_incidence = std::abs(best->normal.dot(d)) / d.norm();
     const double footprint = footprint_per_t * hit.t / std::sqrt(std::max(cos_incidence, 0.05));

@@ -55,6 +55,7 @@ struct SceneHit {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   int label = kMaskNothing;  // plane id, kMaskCharacter or kMaskNothing
   int character = -1;        // index of the character hit, if any
+  bool dynamic = false;      // a moving thing (character or moving planar object)
   float intensity = 0;       // shaded surface intensity 0..255
 };
 
