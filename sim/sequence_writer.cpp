@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "common/atomic_file.h"
+#include "common/json_text.h"
 #include "rawlog_io/calibration.h"
 #include "rawlog_io/rawlog_writer.h"
 #include "rawlog_io/trajectory_io.h"
@@ -61,7 +62,6 @@ SequenceStats writeSequence(const SimConfig& config, const std::string& out_dir,
   RawlogWriter writer(rawlog, sim.calibration());
   Trajectory groundtruth;
   size_t i_imu = 0;
-  double character_fraction_sum = 0;
   for (size_t k = 0; k <= frame_times.size(); ++k) {
     // Camera stamps are t_cam = τ − time_offset; IMU and ground truth up to that stamp go first.
     const bool has_frame = k < frame_times.size();
@@ -77,15 +77,15 @@ SequenceStats writeSequence(const SimConfig& config, const std::string& out_dir,
     config.faults.applyToFrame(frame_times[k], frame.image, frame.mask);
     writer.addImage(stamp, frame.image);
     writer.addMask(stamp, frame.mask);
-    character_fraction_sum +=
-        cv::countNonZero(frame.mask == 0) / static_cast<double>(frame.mask.total());
+    stats.dynamic_coverage.push_back(
+        {stamp, cv::countNonZero(frame.dynamic) / static_cast<double>(frame.dynamic.total())});
     ++stats.frames;
     if (progress) progress(stats.frames, frame_times.size());
   }
   for (size_t i = 1; i < groundtruth.size(); ++i)
     stats.path_length += (groundtruth[i].p - groundtruth[i - 1].p).norm();
   for (const auto& s : imu) stats.max_speed = std::max(stats.max_speed, sim.state(s.t).v.norm());
-  stats.character_pixel_fraction = character_fraction_sum / std::max<size_t>(1, stats.frames);
+  stats.coverage = summarizeCoverage(stats.dynamic_coverage);
 
   writeTum((fs::path(out_dir) / "groundtruth.tum").string(), groundtruth);
   writeFileAtomically(
@@ -99,6 +99,30 @@ SequenceStats writeSequence(const SimConfig& config, const std::string& out_dir,
           out << line;
         }
       });
+  writeFileAtomically((fs::path(out_dir) / "dynamic_fraction.csv").string(),
+                      [&](std::ostream& out) {
+                        out << "# t [s] (camera), fraction of the image covered by moving things\n";
+                        char line[64];
+                        for (const CoverageSample& c : stats.dynamic_coverage) {
+                          std::snprintf(line, sizeof(line), "%.6f,%.6f\n", c.t, c.fraction);
+                          out << line;
+                        }
+                      });
+  writeFileAtomically((fs::path(out_dir) / "sequence.json").string(), [&](std::ostream& out) {
+    out << JsonObject()
+               .text("profile", config.profile_name)
+               .number("seed", static_cast<double>(config.seed))
+               .number("characters", config.scene.characters)
+               .number("duration_s", config.duration)
+               .number("frames", static_cast<double>(stats.frames))
+               .number("path_length_m", stats.path_length)
+               .number("dynamic_fraction_mean", stats.coverage.mean)
+               .number("dynamic_fraction_median", stats.coverage.median)
+               .number("dynamic_fraction_p90", stats.coverage.p90)
+               .number("dynamic_fraction_peak", stats.coverage.peak)
+               .number("dynamic_fraction_first_2s", stats.coverage.first_2s_mean)
+               .str();
+  });
   saveCalibration((fs::path(out_dir) / "calib.ini").string(), sim.calibration());
   writer.close();
   return stats;

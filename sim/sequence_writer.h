@@ -1,10 +1,12 @@
 #pragma once
 // Writes a simulated sequence as a dataset (DESIGN.md §4): DIR/seq.rawlog (+ seq_Images/),
 // DIR/groundtruth.tum (body pose at IMU rate), DIR/groundtruth_biases.csv (true IMU biases),
-// DIR/calib.ini. Every file appears complete or not at all.
+// DIR/calib.ini, DIR/dynamic_fraction.csv (per frame: the fraction of the image moving things
+// cover) and DIR/sequence.json (what the sequence is). Every file appears complete or not at all.
 #include <functional>
 #include <string>
 
+#include "sim/dynamic_coverage.h"
 #include "sim/sim_config.h"
 
 namespace rpvio::sim {
@@ -12,7 +14,8 @@ namespace rpvio::sim {
 struct SequenceStats {
   size_t frames = 0, imu_samples = 0;
   double path_length = 0, max_speed = 0;
-  double character_pixel_fraction = 0;  // mean fraction of the image covered by characters
+  std::vector<CoverageSample> dynamic_coverage;  // per frame, from the true (undegraded) mask
+  CoverageSummary coverage;
 };
 
 /// `progress(frames_done, frames_total)` after each frame.

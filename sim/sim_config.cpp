@@ -7,6 +7,16 @@
 
 namespace rpvio::sim {
 
+PinholeCamera SimConfig::pinholeCamera(int width, int height, double hfov_deg) {
+  PinholeCamera c;
+  c.width = width;
+  c.height = height;
+  c.fx = c.fy = 0.5 * width / std::tan(0.5 * hfov_deg * M_PI / 180);
+  c.cx = 0.5 * (width - 1);
+  c.cy = 0.5 * (height - 1);
+  return c;
+}
+
 Eigen::Isometry3d SimConfig::defaultCameraMount() {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.linear() << 0, 0, 1,  //
@@ -23,9 +33,28 @@ ImuBiasState SimConfig::defaultInitialBias() {
   return b;
 }
 
-SimConfig SimConfig::load(const std::string& path) {
-  const IniFile ini(path);
+SimConfig SimConfig::profile(const std::string& name) {
   SimConfig c;
+  if (name == "paper") return c;
+  if (name != "hard") throw std::invalid_argument("unknown profile '" + name + "' (paper or hard)");
+  c.profile_name = name;
+  // People 1.6-1.9 m tall must fill the view: fly at chest height (0.6 m at the start, 1.0-1.6 m
+  // once a 0.4 m push is done), a gentler wave in height.
+  c.flight.height = 0.9;
+  c.flight.height_amplitude = 0.3;
+  c.flight.start_push = 0.4;
+  c.crowd.layout = "flight";
+  // Masks as a segmentation network gives them (levels: docs/configuration.md).
+  c.mask.boundary_bleed_px = 3;
+  c.mask.missed_plane_rate = 0.03;
+  c.mask.split_plane_id = 1;
+  c.mask.spurious_blob_rate = 0.2;
+  return c;
+}
+
+SimConfig SimConfig::load(const std::string& path, const SimConfig& base) {
+  const IniFile ini(path);
+  SimConfig c = base;
   auto num = [&](const char* section, const char* key, double& value) {
     value = ini.numberOr(section, key, value);
   };
@@ -39,7 +68,7 @@ SimConfig SimConfig::load(const std::string& path) {
       throw InputError(path, "line " + std::to_string(ini.line(section, key)),
                        std::string("'") + key + "' must be positive");
   };
-  double seed = static_cast<double>(c.seed), characters = 0;
+  double seed = static_cast<double>(c.seed), characters = c.scene.characters;
   num("sequence", "duration", c.duration);
   num("sequence", "camera_rate", c.camera_rate);
   num("sequence", "time_offset", c.time_offset);
@@ -75,16 +104,15 @@ SimConfig SimConfig::load(const std::string& path) {
   s.racks = ini.flagOr("scene", "racks", s.racks);
   positive("scene", "texel_size", s.texel_size);
 
-  double width = c.camera.width, height = c.camera.height, hfov_deg = 90;
-  num("camera", "width", width);
-  num("camera", "height", height);
-  num("camera", "hfov_deg", hfov_deg);
-  positive("camera", "hfov_deg", hfov_deg);
-  c.camera.width = static_cast<int>(width);
-  c.camera.height = static_cast<int>(height);
-  c.camera.fx = c.camera.fy = 0.5 * width / std::tan(0.5 * hfov_deg * M_PI / 180);
-  c.camera.cx = 0.5 * (width - 1);
-  c.camera.cy = 0.5 * (height - 1);
+  if (ini.has("camera", "width") || ini.has("camera", "height") || ini.has("camera", "hfov_deg")) {
+    double width = c.camera.width, height = c.camera.height,
+           hfov_deg = 2 * std::atan(0.5 * width / c.camera.fx) * 180 / M_PI;
+    num("camera", "width", width);
+    num("camera", "height", height);
+    num("camera", "hfov_deg", hfov_deg);
+    positive("camera", "hfov_deg", hfov_deg);
+    c.camera = pinholeCamera(static_cast<int>(width), static_cast<int>(height), hfov_deg);
+  }
   Eigen::Vector3d mount = c.T_BC.translation();
   vec("camera", "T_BC_translation", mount);
   c.T_BC.translation() = mount;
@@ -106,7 +134,26 @@ SimConfig SimConfig::load(const std::string& path) {
   vec("imu", "gyro_bias", c.initial_bias.gyro);
   vec("imu", "accel_bias", c.initial_bias.accel);
 
-  double bleed = 0, split = 0;
+  CrowdParams& crowd = c.crowd;
+  crowd.layout = ini.textOr("crowd", "layout", crowd.layout);
+  if (crowd.layout != "ring" && crowd.layout != "flight")
+    throw InputError(path, "line " + std::to_string(ini.line("crowd", "layout")),
+                     "'layout' must be ring or flight, not '" + crowd.layout + "'");
+  num("crowd", "person_height_min", crowd.person_height_min);
+  num("crowd", "person_height_max", crowd.person_height_max);
+  num("crowd", "walking_speed", crowd.walking_speed);
+  num("crowd", "crossing_depth_min", crowd.crossing_depth_min);
+  num("crowd", "crossing_depth_max", crowd.crossing_depth_max);
+  num("crowd", "companion_depth_min", crowd.companion_depth_min);
+  num("crowd", "companion_depth_max", crowd.companion_depth_max);
+  num("crowd", "companion_hold", crowd.companion_hold);
+  num("crowd", "companion_close_in", crowd.companion_close_in);
+  num("crowd", "companion_gap", crowd.companion_gap);
+  num("crowd", "dancer_depth", crowd.dancer_depth);
+  positive("crowd", "crossing_depth_min", crowd.crossing_depth_min);
+  positive("crowd", "companion_depth_min", crowd.companion_depth_min);
+
+  double bleed = c.mask.boundary_bleed_px, split = c.mask.split_plane_id;
   num("mask", "boundary_bleed_px", bleed);
   num("mask", "missed_plane_rate", c.mask.missed_plane_rate);
   num("mask", "split_plane_id", split);

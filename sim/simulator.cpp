@@ -11,7 +11,13 @@ SceneParams seeded(SceneParams p, uint64_t seed) {
 }  // namespace
 
 Simulator::Simulator(const SimConfig& config)
-    : config_(config), flight_(config.flight), scene_(seeded(config.scene, config.seed)) {}
+    : config_(config), flight_(config.flight), scene_(seeded(config.scene, config.seed)) {
+  if (config.crowd.layout == "flight") {
+    const double tan_half_fov = 0.5 * config.camera.width / config.camera.fx;
+    scene_.setCharacters(makeFlightCrowd(config.scene.characters, config.crowd, flight_,
+                                         config.T_BC, tan_half_fov, config.duration, config.seed));
+  }
+}
 
 Eigen::Isometry3d Simulator::bodyPose(double t) const {
   const FlightState s = flight_.at(t);
@@ -55,6 +61,18 @@ std::optional<Eigen::Vector2d> Simulator::project(double t, const Eigen::Vector3
   if (Xc.z() <= 1e-6) return std::nullopt;
   const PinholeCamera& c = config_.camera;
   return Eigen::Vector2d(c.fx * Xc.x() / Xc.z() + c.cx, c.fy * Xc.y() / Xc.z() + c.cy);
+}
+
+double Simulator::dynamicFraction(double t, int stride) {
+  poseAt(t);
+  const PinholeCamera& c = config_.camera;
+  const Eigen::Isometry3d T_WC = cameraPose(t);
+  const WarehouseScene::PlanesInView view = scene_.planesInView(T_WC.translation());
+  int seen = 0, total = 0;
+  for (int v = stride / 2; v < c.height; v += stride)
+    for (int u = stride / 2; u < c.width; u += stride, ++total)
+      seen += scene_.cast(view, pixelRay(c, T_WC, u, v).second, 1.0 / c.fx).dynamic;
+  return static_cast<double>(seen) / std::max(1, total);
 }
 
 double Simulator::distanceToCharacters(double t, const Eigen::Vector3d& X) {

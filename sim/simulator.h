@@ -31,6 +31,9 @@ class Simulator {
   SceneHit castPixel(double t, double u, double v);
   /// Pixel of world point X at IMU time t, if in front of the camera.
   std::optional<Eigen::Vector2d> project(double t, const Eigen::Vector3d& X) const;
+  /// Fraction of the image whose pixel centres see a moving thing at IMU time t, counted on every
+  /// `stride`-th pixel of every `stride`-th row (stride 1: the rendered frame's `dynamic` layer).
+  double dynamicFraction(double t, int stride);
   /// Distance from X to the nearest character surface at IMU time t (∞ without characters).
   double distanceToCharacters(double t, const Eigen::Vector3d& X);
 

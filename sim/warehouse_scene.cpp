@@ -47,7 +47,8 @@ WarehouseScene::WarehouseScene(const SceneParams& p) : params_(p) {
     const double angle = 2 * M_PI * k / p.characters + 0.4;
     const Eigen::Vector2d base =
         p.character_ring_radius * Eigen::Vector2d(std::cos(angle), std::sin(angle));
-    characters_.emplace_back(base, 1.7 * k, p.character_height, static_cast<int>(p.seed) * 13 + k);
+    characters_.push_back(Character::paperDancer(base, 1.7 * k, p.character_height,
+                                                 static_cast<int>(p.seed) * 13 + k));
   }
 }
 

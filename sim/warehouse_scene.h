@@ -1,7 +1,8 @@
 #pragma once
 // The simulated warehouse: a closed room (floor, four walls, optional ceiling), crates inside the
 // flight circle, racks along the walls — every visible face a textured rectangle with its own,
-// stable plane id — and dancing characters around the circle's centre.
+// stable plane id — and characters: the paper's dancers around the circle's centre, or a crowd
+// given by setCharacters (sim/crowd.h).
 //
 // Plane ids: floor 1, walls 2..5, ceiling 6, then crate and rack faces from 10 upwards.
 // Mask labels: plane id on static planes, 0 on characters, 255 where the ray hits nothing.
@@ -10,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "sim/dancing_character.h"
+#include "sim/character.h"
 #include "sim/mip_texture.h"
 
 namespace rpvio::sim {
@@ -33,7 +34,7 @@ struct SceneParams {
   double crate_ring_min = 3.0, crate_ring_max = 6.5;  // m from the centre
   bool racks = true;                                  // along the walls
   double texel_size = 0.02;                           // m per texture texel
-  int characters = 0;
+  int characters = 0;  // the paper's dancers on a ring (unless setCharacters replaces them)
   double character_ring_radius = 10.5;  // m; < 15 sin 45°: in the 90° view from the circle
   double character_height = 1.8;        // m
   uint64_t seed = 1;
@@ -84,7 +85,9 @@ class WarehouseScene {
 
   const std::vector<ScenePlane>& planes() const { return planes_; }
   const ScenePlane* plane(int id) const;
-  const std::vector<DancingCharacter>& characters() const { return characters_; }
+  const std::vector<Character>& characters() const { return characters_; }
+  /// Replaces the characters (the paper's ring of dancers) by others.
+  void setCharacters(std::vector<Character> characters) { characters_ = std::move(characters); }
   const SceneParams& params() const { return params_; }
 
  private:
@@ -95,7 +98,7 @@ class WarehouseScene {
 
   SceneParams params_;
   std::vector<ScenePlane> planes_;
-  std::vector<DancingCharacter> characters_;
+  std::vector<Character> characters_;
 };
 
 }  // namespace rpvio::sim

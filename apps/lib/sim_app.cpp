@@ -18,15 +18,20 @@ namespace rpvio::apps {
 namespace {
 
 const char* kUsage =
-    "usage: rpvio-sim --characters N [--seed S] [--duration SEC] [--time-offset SEC]\n"
-    "                 [--config INI] --out DIR\n"
-    "       rpvio-sim --suite [--seed S] [--duration SEC] [--config INI] --out DIR\n"
-    "       rpvio-sim --preview [--characters N] [--time SEC] [--config INI] --out FILE.png\n"
+    "usage: rpvio-sim --characters N [--profile paper|hard] [--seed S] [--duration SEC]\n"
+    "                 [--time-offset SEC] [--config INI] --out DIR\n"
+    "       rpvio-sim --suite [--profile paper|hard] [--seed S] [--duration SEC] [--config INI]\n"
+    "                 --out DIR\n"
+    "       rpvio-sim --preview [--profile P] [--characters N] [--time SEC] [--config INI]\n"
+    "                 --out FILE.png\n"
     "  Writes DIR/seq.rawlog (+ seq_Images/), DIR/groundtruth.tum, DIR/groundtruth_biases.csv,\n"
     "  DIR/groundtruth_planes.yaml (the scene's planes, id = mask label, in the plane map's\n"
-    "  schema), DIR/calib.ini. --suite writes DIR/{static,C1,C2,C4,C6,C8}/ with the same seed.\n"
-    "  Scene and noise parameters: --config (default config/sim/warehouse.ini when present, else\n"
-    "  built-in defaults, which that file documents).\n"
+    "  schema), DIR/calib.ini, DIR/dynamic_fraction.csv (per frame: the fraction of the image\n"
+    "  moving things cover) and DIR/sequence.json (profile, seed, coverage figures).\n"
+    "  --suite writes DIR/{static,C1,C2,C4,C6,C8}/ with the same seed (CN: N characters).\n"
+    "  --profile: paper (default; the paper's RPVIO-Sim warehouse) or hard (a crowd that fills\n"
+    "  the view, CNN-like masks); --config INI overrides keys of the profile (every key:\n"
+    "  config/sim/warehouse.ini and docs/configuration.md).\n"
     "  Fault injection (off by default; times in s of the sequence, intervals START:DURATION,\n"
     "  each option may repeat):\n"
     "    --drop-frame T        the frame nearest to T is lost\n"
@@ -75,11 +80,13 @@ sim::FaultInjection faultOptions(const CommandLine& cli) {
 }
 
 sim::SimConfig loadConfig(const CommandLine& cli) {
-  const std::string path = cli.valueOr("config", "");
-  sim::SimConfig config = !path.empty() ? sim::SimConfig::load(path)
-                          : fs::exists("config/sim/warehouse.ini")
-                              ? sim::SimConfig::load("config/sim/warehouse.ini")
-                              : sim::SimConfig{};
+  sim::SimConfig config;
+  try {
+    config = sim::SimConfig::profile(cli.valueOr("profile", "paper"));
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--profile: ") + e.what());
+  }
+  if (cli.has("config")) config = sim::SimConfig::load(cli.value("config"), config);
   config.seed = static_cast<uint64_t>(cli.number("seed", static_cast<double>(config.seed)));
   config.duration = cli.number("duration", config.duration);
   config.time_offset = cli.number("time-offset", config.time_offset);
@@ -113,10 +120,10 @@ void generate(const sim::SimConfig& config, const std::string& dir) {
   const double elapsed =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::printf(
-      "%s: %zu frames, %zu IMU samples, path %.1f m, max speed %.2f m/s, characters cover "
-      "%.1f%% of the image, %.1f s\n",
+      "%s: %zu frames, %zu IMU samples, path %.1f m, max speed %.2f m/s, moving things cover "
+      "%.1f%% of the image (median; 90th percentile %.1f%%), %.1f s\n",
       dir.c_str(), stats.frames, stats.imu_samples, stats.path_length, stats.max_speed,
-      100 * stats.character_pixel_fraction, elapsed);
+      100 * stats.coverage.median, 100 * stats.coverage.p90, elapsed);
 }
 
 }  // namespace
@@ -141,7 +148,7 @@ std::vector<Plane> truePlanes(const sim::WarehouseScene& scene, double duration)
 int simMain(int argc, char** argv) {
   return runApp("rpvio-sim", kUsage, [&] {
     std::set<std::string> options = {"characters", "seed", "duration", "time-offset",
-                                     "config",     "out",  "time"};
+                                     "config",     "out",  "time",     "profile"};
     options.insert(kFaultOptions.begin(), kFaultOptions.end());
     const CommandLine cli(argc, argv, options, {"suite", "preview"});
     const std::string out = cli.value("out");

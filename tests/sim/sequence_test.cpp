@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "common/input_error.h"
+#include "common/json_text.h"
 #include "rawlog_io/calibration.h"
 #include "rawlog_io/rawlog_summary.h"
 #include "rawlog_io/trajectory_io.h"
@@ -48,6 +49,32 @@ TEST(Sequence, WritesAReadableDataset) {
   const Calibration calib = loadCalibration(dir.file("calib.ini"));
   EXPECT_EQ(calib.camera.width, 640);
   EXPECT_NEAR(calib.camera.fx, 320.0, 1e-9);
+  // One coverage line per frame; sequence.json summarizes them.
+  std::istringstream csv(test::readFile(dir.file("dynamic_fraction.csv")));
+  std::string line;
+  std::getline(csv, line);  // header
+  size_t lines = 0;
+  for (; std::getline(csv, line); ++lines) {
+    const double fraction = std::stod(line.substr(line.find(',') + 1));
+    EXPECT_GT(fraction, 0.0);  // two characters in view
+    EXPECT_LT(fraction, 0.1);
+  }
+  EXPECT_EQ(lines, 11u);
+  const std::string json = test::readFile(dir.file("sequence.json"));
+  EXPECT_NEAR(jsonNumber(json, "dynamic_fraction_median"), stats.coverage.median, 1e-5);
+  EXPECT_EQ(jsonNumber(json, "characters"), 2);
+  EXPECT_NE(json.find("\"profile\": \"paper\""), std::string::npos) << json;
+}
+
+TEST(Sequence, CoverageSummaryPercentiles) {
+  std::vector<CoverageSample> samples;
+  for (int k = 0; k <= 100; ++k) samples.push_back({0.1 * k, k / 100.0});  // 0 .. 1 over 10 s
+  const CoverageSummary s = summarizeCoverage(samples);
+  EXPECT_NEAR(s.median, 0.5, 1e-12);
+  EXPECT_NEAR(s.p90, 0.9, 1e-12);
+  EXPECT_NEAR(s.peak, 1.0, 1e-12);
+  EXPECT_NEAR(s.mean, 0.5, 1e-12);
+  EXPECT_NEAR(s.first_2s_mean, 0.095, 1e-12);  // t < 2 s: 0 .. 0.19
 }
 
 TEST(Sequence, SameSeedSameBytesDifferentSeedDifferentNoise) {
@@ -78,6 +105,41 @@ TEST(Sequence, ConfigFileDocumentsTheBuiltInDefaults) {
   EXPECT_EQ(file.imu.gyro_noise_density, builtin.imu.gyro_noise_density);
   EXPECT_TRUE(file.initial_bias.accel.isApprox(builtin.initial_bias.accel));
   EXPECT_EQ(file.render.noise_sigma, builtin.render.noise_sigma);
+  EXPECT_EQ(file.crowd.layout, builtin.crowd.layout);
+  EXPECT_EQ(file.crowd.companion_hold, builtin.crowd.companion_hold);
+  EXPECT_EQ(file.crowd.companion_close_in, builtin.crowd.companion_close_in);
+  EXPECT_EQ(file.crowd.crossing_depth_max, builtin.crowd.crossing_depth_max);
+}
+
+TEST(SimConfig, HardProfileChangesTheCrowdFlightAndMasksAndAFileOverridesIt) {
+  const SimConfig paper = SimConfig::profile("paper"), hard = SimConfig::profile("hard");
+  EXPECT_EQ(paper.crowd.layout, "ring");
+  EXPECT_EQ(hard.crowd.layout, "flight");
+  EXPECT_LT(hard.flight.height, paper.flight.height);
+  EXPECT_TRUE(hard.mask.enabled());
+  EXPECT_FALSE(paper.mask.enabled());
+  EXPECT_EQ(hard.flight.radius, paper.flight.radius);
+  EXPECT_EQ(hard.profile_name, "hard");
+  test::TempDir dir;
+  test::writeText(dir.file("over.ini"), "[flight]\nspeed = 2\n[mask]\nsplit_plane_id = 0\n");
+  const SimConfig over = SimConfig::load(dir.file("over.ini"), hard);
+  EXPECT_EQ(over.flight.speed, 2);
+  EXPECT_EQ(over.mask.split_plane_id, 0);
+  EXPECT_EQ(over.crowd.layout, "flight");
+  EXPECT_EQ(over.mask.boundary_bleed_px, hard.mask.boundary_bleed_px);
+  EXPECT_EQ(over.camera.fx, hard.camera.fx);
+  EXPECT_THROW(SimConfig::profile("easy"), std::invalid_argument);
+}
+
+TEST(SimConfig, UnknownCrowdLayoutNamesTheLine) {
+  test::TempDir dir;
+  test::writeText(dir.file("scene.ini"), "[crowd]\nlayout = square\n");
+  try {
+    SimConfig::load(dir.file("scene.ini"));
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(":line 2:"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Sequence, UnknownKeyInTheSceneFileIsABadConfig) {
@@ -104,6 +166,11 @@ TEST(SimApp, BadArgumentsExitTwo) {
             2)
       << out;
   EXPECT_NE(out.find("/nonexistent.ini"), std::string::npos) << out;
+  EXPECT_EQ(test::runCommand(
+                test::binDir() + "/rpvio-sim --characters 2 --profile easy --out /tmp/x", out),
+            2)
+      << out;
+  EXPECT_NE(out.find("--profile"), std::string::npos) << out;
 }
 
 }  // namespace

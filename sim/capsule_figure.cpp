@@ -1,0 +1,100 @@
+#include "sim/capsule_figure.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rpvio::sim {
+namespace {
+
+/// Ray/capsule intersection: infinite cylinder around the segment, clipped, plus the end spheres.
+std::optional<double> intersectCapsule(const Capsule& c, const Eigen::Vector3d& o,
+                                       const Eigen::Vector3d& d) {
+  const Eigen::Vector3d ba = c.b - c.a, oa = o - c.a;
+  const double baba = ba.dot(ba), bard = ba.dot(d), baoa = ba.dot(oa);
+  const double rdoa = d.dot(oa), oaoa = oa.dot(oa);
+  const double a = baba * d.dot(d) - bard * bard;
+  const double b = baba * rdoa - baoa * bard;
+  const double cc = baba * oaoa - baoa * baoa - c.radius * c.radius * baba;
+  const double h = b * b - a * cc;
+  if (h < 0) return std::nullopt;
+  if (a > 1e-12) {
+    const double t = (-b - std::sqrt(h)) / a;
+    const double y = baoa + t * bard;
+    if (y > 0 && y < baba && t > 0) return t;
+  }
+  // End caps: spheres at a and b.
+  std::optional<double> best;
+  for (const Eigen::Vector3d& centre : {c.a, c.b}) {
+    const Eigen::Vector3d oc = o - centre;
+    const double qa = d.dot(d), qb = oc.dot(d), qc = oc.dot(oc) - c.radius * c.radius;
+    const double disc = qb * qb - qa * qc;
+    if (disc < 0) continue;
+    const double t = (-qb - std::sqrt(disc)) / qa;
+    if (t > 0 && (!best || t < *best)) best = t;
+  }
+  return best;
+}
+
+Eigen::Vector3d closestOnSegment(const Capsule& c, const Eigen::Vector3d& x) {
+  const Eigen::Vector3d ab = c.b - c.a;
+  const double s = std::clamp((x - c.a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  return c.a + s * ab;
+}
+
+double hash01(int a, int b) {
+  uint32_t h = static_cast<uint32_t>(a) * 374761393u + static_cast<uint32_t>(b) * 668265263u;
+  h = (h ^ (h >> 13)) * 1274126177u;
+  return (h ^ (h >> 16)) / 4294967295.0;
+}
+
+}  // namespace
+
+void CapsuleFigure::setParts(std::vector<Capsule> parts, const Eigen::Vector3d& bound_centre,
+                             double cell_size, int seed) {
+  parts_ = std::move(parts);
+  bound_centre_ = bound_centre;
+  cell_size_ = cell_size;
+  seed_ = seed;
+  bound_radius_ = 0;
+  for (const Capsule& p : parts_)
+    bound_radius_ = std::max({bound_radius_, (p.a - bound_centre_).norm() + p.radius,
+                              (p.b - bound_centre_).norm() + p.radius});
+}
+
+std::optional<CharacterHit> CapsuleFigure::intersect(const Eigen::Vector3d& o,
+                                                     const Eigen::Vector3d& d, double t_max) const {
+  // Bounding sphere first (d need not be unit).
+  const Eigen::Vector3d oc = o - bound_centre_;
+  const double qa = d.dot(d), qb = oc.dot(d), qc = oc.dot(oc) - bound_radius_ * bound_radius_;
+  if (qb * qb - qa * qc < 0) return std::nullopt;
+  int best_part = -1;
+  double best_t = t_max;
+  for (size_t k = 0; k < parts_.size(); ++k) {
+    const auto t = intersectCapsule(parts_[k], o, d);
+    if (t && *t < best_t) best_t = *t, best_part = static_cast<int>(k);
+  }
+  if (best_part < 0) return std::nullopt;
+  const Capsule& part = parts_[best_part];
+  CharacterHit hit;
+  hit.t = best_t;
+  hit.point = o + best_t * d;
+  const Eigen::Vector3d axis_point = closestOnSegment(part, hit.point);
+  hit.normal = (hit.point - axis_point).normalized();
+  // Clothes: stripes along the limb and a per-part checker around it (moves with the limb).
+  const double along = (axis_point - part.a).norm() / cell_size_;
+  const double around = std::atan2(hit.normal.z(), hit.normal.x() + hit.normal.y()) * 3 / M_PI;
+  const int cell = static_cast<int>(std::floor(along)) * 31 + static_cast<int>(std::floor(around));
+  const double tone = hash01(seed_ * 17 + best_part, cell);
+  const double stripe = std::fmod(std::abs(along), 1.0) < 0.3 ? 0.4 : 1.0;
+  hit.albedo = static_cast<float>(best_part == 0 ? 150 + 60 * tone : 30 + 200 * tone * stripe);
+  return hit;
+}
+
+double CapsuleFigure::signedDistance(const Eigen::Vector3d& x) const {
+  double best = INFINITY;
+  for (const Capsule& p : parts_)
+    best = std::min(best, (x - closestOnSegment(p, x)).norm() - p.radius);
+  return best;
+}
+
+}  // namespace rpvio::sim
