@@ -24,7 +24,8 @@ const char* kUsage =
     "       rpvio-sim --preview [--characters N] [--time SEC] [--config INI] --out FILE.png\n"
     "  Writes DIR/seq.rawlog (+ seq_Images/), DIR/groundtruth.tum, DIR/groundtruth_biases.csv,\n"
     "  DIR/groundtruth_planes.yaml (the scene's planes, id = mask label, in the plane map's\n"
-    "  schema), DIR/calib.ini. --suite writes DIR/{static,C1,C2,C4,C6,C8}/ with the same seed.\n"
+    "  schema; moving objects' faces at t = 0 with their motion), DIR/calib.ini. --suite\n"
+    "  writes DIR/{static,C1,C2,C4,C6,C8}/ with the same seed.\n"
     "  Scene and noise parameters: --config (default config/sim/warehouse.ini when present, else\n"
     "  built-in defaults, which that file documents).\n"
     "  Fault injection (off by default; times in s of the sequence, intervals START:DURATION,\n"
@@ -134,6 +135,21 @@ std::vector<Plane> truePlanes(const sim::WarehouseScene& scene, double duration)
     p.mask_ids = {s.id};
     p.last_seen = duration;
     planes.push_back(p);
+  }
+  for (const sim::MovingPlanarObject& object : scene.movingObjects()) {
+    for (const sim::PosedFace& face : object.faces(0)) {
+      Plane p;
+      p.id = face.id;
+      p.normal = face.normal;
+      p.distance = face.distance;
+      p.covariance.setZero();
+      p.polygon.assign(face.corners.begin(), face.corners.end());
+      p.mask_ids = {face.id};
+      p.last_seen = duration;
+      p.moving = true;
+      p.motion = object.motion();
+      planes.push_back(p);
+    }
   }
   return planes;
 }
