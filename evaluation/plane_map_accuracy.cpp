@@ -3,13 +3,20 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 
 namespace rpvio::eval {
 
 PlaneMapAccuracy evaluatePlaneMap(const std::vector<Plane>& map, const std::vector<Plane>& truth,
                                   const Similarity& est_to_gt) {
   std::map<int, const Plane*> true_of_label;
-  for (const Plane& p : truth) true_of_label[p.id] = &p;
+  std::set<int> moving_labels;
+  for (const Plane& p : truth) {
+    if (p.moving)
+      moving_labels.insert(p.id);
+    else
+      true_of_label[p.id] = &p;
+  }
   PlaneMapAccuracy result;
   result.map_planes = map.size();
   std::map<int, std::vector<const Plane*>> entries;  // true id → its map planes
@@ -17,7 +24,9 @@ PlaneMapAccuracy evaluatePlaneMap(const std::vector<Plane>& map, const std::vect
     std::vector<int> labels;
     for (int mask : p.mask_ids)
       if (true_of_label.count(mask)) labels.push_back(mask);
-    if (labels.empty()) ++result.unmatched;
+    const bool on_moving = std::any_of(p.mask_ids.begin(), p.mask_ids.end(),
+                                       [&](int mask) { return moving_labels.count(mask) > 0; });
+    if (labels.empty()) ++(on_moving ? result.on_moving : result.unmatched);
     if (labels.size() > 1) ++result.mixed;
     for (int label : labels) entries[label].push_back(&p);
   }

@@ -28,10 +28,12 @@ struct PlaneMapAccuracy {
   size_t duplicates = 0;                  // Σ (map_entries − 1)
   size_t mixed = 0;      // map planes seen as labels of several true planes (wrong merges)
   size_t unmatched = 0;  // map planes whose labels are no true plane
+  size_t on_moving = 0;  // map planes seen only as labels of moving planes (not scored)
 };
 
 /// `map` in the estimate's world, `truth` (id = label) in the ground-truth world; `est_to_gt` the
-/// trajectory alignment (X_gt = s R X_est + t).
+/// trajectory alignment (X_gt = s R X_est + t). Moving true planes (moving objects' faces) are no
+/// static planes to score: a map plane seen only as their labels counts in `on_moving`.
 PlaneMapAccuracy evaluatePlaneMap(const std::vector<Plane>& map, const std::vector<Plane>& truth,
                                   const Similarity& est_to_gt);
 

@@ -47,7 +47,7 @@ MissingPlanes missingPlanes(const PlaneMapAccuracy& accuracy, const std::vector<
   MissingPlanes out;
   for (const Plane& p : truth) {
     const auto v = visible.find(p.id);
-    if (v == visible.end() || in_map.count(p.id)) continue;
+    if (p.moving || v == visible.end() || in_map.count(p.id)) continue;
     if (v->second.trackable_s > min_seconds)
       out.missing.push_back({p.id, v->second});
     else if (v->second.seen_s > min_seconds)

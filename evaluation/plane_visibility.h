@@ -51,8 +51,9 @@ struct MissingPlane {
   LabelVisibility visible;
 };
 
-/// The true planes without an entry in the evaluated map that were trackable for more than
-/// `min_seconds` (`missing`), or only seen for that long (`untrackable`).
+/// The static true planes without an entry in the evaluated map that were trackable for more than
+/// `min_seconds` (`missing`), or only seen for that long (`untrackable`); moving ones are not
+/// expected in the map.
 struct MissingPlanes {
   std::vector<MissingPlane> missing, untrackable;
 };

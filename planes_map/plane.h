@@ -5,6 +5,8 @@
 #include <set>
 #include <vector>
 
+#include "common/oscillating_translation.h"
+
 namespace rpvio {
 
 struct Plane {
@@ -17,6 +19,10 @@ struct Plane {
   size_t observations = 0;
   double first_seen = 0, last_seen = 0;  // s
   std::set<int> mask_ids;                // labels it was seen as
+  // Ground truth of a moving planar object (simulator): normal, distance and polygon are at t = 0;
+  // at time t every point X(0) is at X(0) + motion.offset(t) − motion.offset(0).
+  bool moving = false;
+  OscillatingTranslation motion;
 
   /// Distance of a point to the plane (signed).
   double signedDistance(const Eigen::Vector3d& x) const { return normal.dot(x) - distance; }

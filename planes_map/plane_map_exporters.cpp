@@ -78,6 +78,12 @@ void writePlanesYaml(const std::string& path, const std::vector<Plane>& planes) 
           << "\n    last_seen: " << p.last_seen << "\n    mask_ids: ";
       writeList(out, p.mask_ids);
       out << "\n";
+      if (!p.moving) continue;
+      const OscillatingTranslation& m = p.motion;
+      out << "    moving: true\n    motion: oscillating_translation\n    motion_axis: ";
+      writeList(out, std::vector<double>{m.axis.x(), m.axis.y(), m.axis.z()});
+      out << "\n    motion_amplitude: " << m.amplitude << "\n    motion_period: " << m.period
+          << "\n    motion_phase: " << m.phase << "\n";
     }
   });
 }
@@ -100,6 +106,16 @@ std::vector<Plane> readPlanesYaml(const std::string& path) {
     if (planes.empty())
       throw InputError(path, "line " + std::to_string(line), "entry outside a plane");
     Plane& p = planes.back();
+    if (key == "moving" || key == "motion") {
+      std::string word = value;
+      word.erase(0, word.find_first_not_of(' '));
+      word.erase(word.find_last_not_of(' ') + 1);
+      if (key == "moving" ? word != "true" && word != "false" : word != "oscillating_translation")
+        throw InputError(path, "line " + std::to_string(line),
+                         "unknown " + key + " '" + word + "'");
+      if (key == "moving") p.moving = word == "true";
+      continue;
+    }
     const auto v = numbersIn(value, path, line);
     auto need = [&](size_t n) {
       if (v.size() != n)
@@ -126,6 +142,14 @@ std::vector<Plane> readPlanesYaml(const std::string& path) {
       need(1), p.last_seen = v[0];
     else if (key == "mask_ids")
       for (double m : v) p.mask_ids.insert(static_cast<int>(m));
+    else if (key == "motion_axis")
+      need(3), p.motion.axis = Eigen::Vector3d(v[0], v[1], v[2]);
+    else if (key == "motion_amplitude")
+      need(1), p.motion.amplitude = v[0];
+    else if (key == "motion_period")
+      need(1), p.motion.period = v[0];
+    else if (key == "motion_phase")
+      need(1), p.motion.phase = v[0];
   }
   return planes;
 }

@@ -14,6 +14,12 @@
 //       first_seen: 1.25             # s
 //       last_seen: 79.9              # s
 //       mask_ids: [4, 17]            # labels it was seen as
+//       moving: true                 # only on moving planes (ground truth of moving objects):
+//       motion: oscillating_translation  # then plane and polygon are at t = 0 and every point
+//       motion_axis: [ax, ay, az]    #   moves by A (sin(2π t / T + φ) − sin φ) along the unit axis
+//       motion_amplitude: 3.5        # A (m)
+//       motion_period: 14.7          # T (s)
+//       motion_phase: 0.5            # φ (rad)
 // planes.ply — ASCII PLY, each polygon triangulated as a fan, vertices coloured by plane id.
 // planes.bt — OctoMap (liboctomap binary) of the supporting points at `resolution` m.
 // planes.3Dscene — MRPT scene (SceneViewer3D): the polygons as coloured triangles.
@@ -29,8 +35,8 @@
 namespace rpvio {
 
 void writePlanesYaml(const std::string& path, const std::vector<Plane>& planes);
-/// Reads what writePlanesYaml wrote (id, normal, d, covariance, polygon, counts, times, mask ids;
-/// not the support points). InputError (file, line) on malformed content.
+/// Reads what writePlanesYaml wrote (id, normal, d, covariance, polygon, counts, times, mask ids,
+/// motion; not the support points). InputError (file, line) on malformed content.
 std::vector<Plane> readPlanesYaml(const std::string& path);
 void writePlanesPly(const std::string& path, const std::vector<Plane>& planes);
 void writePlanesOctomap(const std::string& path, const std::vector<Plane>& planes,

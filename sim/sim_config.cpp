@@ -92,17 +92,29 @@ SimConfig SimConfig::load(const std::string& path, const SimConfig& base) {
   positive("flight", "radius", f.radius);
 
   SceneParams& s = c.scene;
-  double crates = s.crates;
+  double crates = s.crates, trucks = s.pallet_trucks, panels = s.sliding_panels;
   num("scene", "room_half_size", s.room_half_size);
   num("scene", "room_height", s.room_height);
   num("scene", "crates", crates);
   num("scene", "texel_size", s.texel_size);
   num("scene", "character_ring_radius", s.character_ring_radius);
   num("scene", "character_height", s.character_height);
+  num("scene", "pallet_trucks", trucks);
+  num("scene", "sliding_panels", panels);
+  num("scene", "moving_speed", s.moving_speed);
   s.crates = static_cast<int>(crates);
+  s.pallet_trucks = static_cast<int>(trucks);
+  s.sliding_panels = static_cast<int>(panels);
   s.ceiling = ini.flagOr("scene", "ceiling", s.ceiling);
   s.racks = ini.flagOr("scene", "racks", s.racks);
   positive("scene", "texel_size", s.texel_size);
+  positive("scene", "moving_speed", s.moving_speed);
+  if (s.pallet_trucks < 0 || s.sliding_panels < 0 ||
+      s.pallet_trucks * kPalletTruckFaces + s.sliding_panels * kSlidingPanelFaces >
+          kMovingPlaneIdLast - kMovingPlaneIdFirst + 1)
+    throw InputError(path, "line " + std::to_string(ini.line("scene", "pallet_trucks")),
+                     "pallet_trucks (10 faces each) and sliding_panels (2 faces each) need more "
+                     "than the 40 plane ids 200..239");
 
   if (ini.has("camera", "width") || ini.has("camera", "height") || ini.has("camera", "hfov_deg")) {
     double width = c.camera.width, height = c.camera.height,

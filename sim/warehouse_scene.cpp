@@ -3,19 +3,32 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <random>
+#include <stdexcept>
 
 namespace rpvio::sim {
 namespace {
 
-const Eigen::Vector3d kLight = Eigen::Vector3d(0.4, 0.3, 0.85).normalized();
+// Paths of the moving objects: tangent to these circles around the centre, between the crates
+// (up to ~8.5 m) and the characters (10.5 m), in view from anywhere on the flight circle.
+constexpr double kTruckRingRadius = 8.75, kTruckAmplitude = 3.5;  // m
+constexpr double kPanelRingRadius = 9.5, kPanelAmplitude = 1.5;   // m
 
-float lambert(const Eigen::Vector3d& normal) {
-  return static_cast<float>(0.55 + 0.45 * std::max(0.0, normal.dot(kLight)));
+/// Back and forth along the tangent of the circle at `angle`, peak speed `speed`.
+OscillatingTranslation tangentMotion(double angle, double amplitude, double speed, double phase) {
+  OscillatingTranslation m;
+  m.axis = Eigen::Vector3d(-std::sin(angle), std::cos(angle), 0);
+  m.amplitude = amplitude;
+  m.period = 2 * M_PI * amplitude / speed;  // peak speed 2π A / T
+  m.phase = phase;
+  return m;
 }
 
 }  // namespace
 
 WarehouseScene::WarehouseScene(const SceneParams& p) : params_(p) {
+  if (p.pallet_trucks * kPalletTruckFaces + p.sliding_panels * kSlidingPanelFaces >
+      kMovingPlaneIdLast - kMovingPlaneIdFirst + 1)
+    throw std::invalid_argument("too many moving objects for the plane ids 200..239");
   const double L = p.room_half_size, H = p.room_height;
   const Eigen::Vector3d X = Eigen::Vector3d::UnitX(), Y = Eigen::Vector3d::UnitY(),
                         Z = Eigen::Vector3d::UnitZ();
@@ -32,15 +45,17 @@ WarehouseScene::WarehouseScene(const SceneParams& p) : params_(p) {
   for (int k = 0; k < p.crates; ++k) {
     const double angle = 2 * M_PI * (k + 0.3 * uni(rng)) / std::max(1, p.crates);
     const double r = p.crate_ring_min + (p.crate_ring_max - p.crate_ring_min) * uni(rng);
-    addBox(next_id, {r * std::cos(angle), r * std::sin(angle)}, M_PI * uni(rng),
-           0.5 + 0.9 * uni(rng), 0.5 + 0.9 * uni(rng), 1.0 + 2.0 * uni(rng), TextureStyle::Crate);
+    appendBox(planes_, next_id, {r * std::cos(angle), r * std::sin(angle), 0}, M_PI * uni(rng),
+              0.5 + 0.9 * uni(rng), 0.5 + 0.9 * uni(rng), 1.0 + 2.0 * uni(rng), TextureStyle::Crate,
+              p.texel_size, p.seed);
   }
   if (p.racks) {
     for (int wall = 0; wall < 4; ++wall) {
       const double angle = wall * M_PI / 2;
-      const Eigen::Vector2d centre = (L - 1.0) * Eigen::Vector2d(std::cos(angle), std::sin(angle));
-      addBox(next_id, centre, angle, 0.6, 6.0 + 2.0 * uni(rng), 3.5 + uni(rng),
-             TextureStyle::Shelf);
+      const Eigen::Vector3d centre =
+          (L - 1.0) * Eigen::Vector3d(std::cos(angle), std::sin(angle), 0);
+      appendBox(planes_, next_id, centre, angle, 0.6, 6.0 + 2.0 * uni(rng), 3.5 + uni(rng),
+                TextureStyle::Shelf, p.texel_size, p.seed);
     }
   }
   for (int k = 0; k < p.characters; ++k) {
@@ -50,44 +65,49 @@ WarehouseScene::WarehouseScene(const SceneParams& p) : params_(p) {
     characters_.push_back(Character::paperDancer(base, 1.7 * k, p.character_height,
                                                  static_cast<int>(p.seed) * 13 + k));
   }
+  int moving_id = kMovingPlaneIdFirst;
+  for (int k = 0; k < p.pallet_trucks; ++k)
+    addPalletTruck(moving_id, 2 * M_PI * k / p.pallet_trucks + 1.9, 1.3 * k + 0.5);
+  for (int k = 0; k < p.sliding_panels; ++k)
+    addSlidingPanel(moving_id, 2 * M_PI * k / p.sliding_panels + 3.6, 2.1 * k + 1.0);
 }
 
 void WarehouseScene::addRectangle(int id, const Eigen::Vector3d& centre,
                                   const Eigen::Vector3d& normal, const Eigen::Vector3d& u_axis,
                                   double width, double height, TextureStyle style) {
-  ScenePlane plane;
-  plane.id = id;
-  plane.normal = normal.normalized();
-  plane.u_axis = u_axis.normalized();
-  plane.v_axis = plane.normal.cross(plane.u_axis);  // u × v = n
-  plane.width = width;
-  plane.height = height;
-  plane.origin = centre - 0.5 * width * plane.u_axis - 0.5 * height * plane.v_axis;
-  plane.shade = lambert(plane.normal);
-  plane.texture = MipTexture(makeSurfaceTexture(width, height, params_.texel_size, style,
-                                                params_.seed * 257 + static_cast<uint64_t>(id)),
-                             params_.texel_size);
-  planes_.push_back(std::move(plane));
+  planes_.push_back(makeRectangle(id, centre, normal, u_axis, width, height, style,
+                                  params_.texel_size, params_.seed));
 }
 
-void WarehouseScene::addBox(int& next_id, const Eigen::Vector2d& c, double yaw, double half_x,
-                            double half_y, double height, TextureStyle style) {
-  const Eigen::Matrix3d R = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  const Eigen::Vector3d centre(c.x(), c.y(), 0), Z = Eigen::Vector3d::UnitZ();
-  const double half[2] = {half_x, half_y};
-  for (int side = 0; side < 4; ++side) {
-    const int axis = side % 2;
-    const double sign = side < 2 ? 1.0 : -1.0;
-    const Eigen::Vector3d n = sign * R.col(axis);
-    const double width = 2 * half[1 - axis];
-    addRectangle(next_id++, centre + half[axis] * n + 0.5 * height * Z, n, Z.cross(n), width,
-                 height, style);
-  }
-  addRectangle(next_id++, centre + height * Z, Z, R.col(0), 2 * half_x, 2 * half_y, style);
+void WarehouseScene::addPalletTruck(int& next_id, double angle, double phase) {
+  // Driving along the tangent: a load of boxes (1.2 x 1.0 x 1.5 m) ahead of the driver's unit.
+  const double yaw = angle + M_PI / 2;
+  const Eigen::Vector3d ahead(std::cos(yaw), std::sin(yaw), 0);
+  std::vector<ScenePlane> faces;
+  appendBox(faces, next_id, 0.3 * ahead, yaw, 0.6, 0.5, 1.5, TextureStyle::Crate,
+            params_.texel_size, params_.seed);
+  appendBox(faces, next_id, -0.75 * ahead, yaw, 0.3, 0.45, 1.3, TextureStyle::Crate,
+            params_.texel_size, params_.seed);
+  const Eigen::Vector3d centre(kTruckRingRadius * std::cos(angle),
+                               kTruckRingRadius * std::sin(angle), 0);
+  moving_.emplace_back(std::move(faces), centre,
+                       tangentMotion(angle, kTruckAmplitude, params_.moving_speed, phase));
+}
+
+void WarehouseScene::addSlidingPanel(int& next_id, double angle, double phase) {
+  // A 3 m x 2.5 m panel facing the centre, sliding along its width; textured on both sides.
+  const Eigen::Vector3d radial(std::cos(angle), std::sin(angle), 0), Z = Eigen::Vector3d::UnitZ();
+  std::vector<ScenePlane> faces;
+  for (const Eigen::Vector3d& n : {Eigen::Vector3d(-radial), radial})
+    faces.push_back(makeRectangle(next_id++, 1.25 * Z, n, Z.cross(n), 3.0, 2.5, TextureStyle::Crate,
+                                  params_.texel_size, params_.seed));
+  moving_.emplace_back(std::move(faces), kPanelRingRadius * radial,
+                       tangentMotion(angle, kPanelAmplitude, params_.moving_speed, phase));
 }
 
 void WarehouseScene::setTime(double t) {
   for (auto& c : characters_) c.pose(t);
+  for (auto& m : moving_) m.setTime(t);
 }
 
 WarehouseScene::PlanesInView WarehouseScene::planesInView(const Eigen::Vector3d& origin) const {
@@ -110,15 +130,19 @@ SceneHit WarehouseScene::cast(const PlanesInView& view, const Eigen::Vector3d& d
   const ScenePlane* best = nullptr;
   double best_u = 0, best_v = 0;
   for (const auto& [plane, numerator] : view.planes) {
-    const ScenePlane& p = *plane;
-    const double denom = p.normal.dot(d);
-    if (denom >= -1e-12) continue;  // back face or parallel
-    const double t = numerator / denom;
-    if (t <= 1e-9 || t >= hit.t) continue;
-    const Eigen::Vector3d local = o + t * d - p.origin;
-    const double u = local.dot(p.u_axis), v = local.dot(p.v_axis);
-    if (u < 0 || u > p.width || v < 0 || v > p.height) continue;
-    hit.t = t, best = &p, best_u = u, best_v = v;
+    double t, u, v;
+    if (plane->intersectFront(o, d, numerator, hit.t, t, u, v))
+      hit.t = t, best = plane, best_u = u, best_v = v;
+  }
+  for (const MovingPlanarObject& m : moving_) {
+    if (auto h = m.intersect(o, d, hit.t, footprint_per_t)) {
+      hit.t = h->t;
+      hit.point = h->point;
+      hit.label = h->id;
+      hit.dynamic = true;
+      hit.intensity = h->intensity;
+      best = nullptr;
+    }
   }
   for (size_t k = 0; k < characters_.size(); ++k) {
     if (auto c = characters_[k].intersect(o, d, hit.t)) {
@@ -136,10 +160,7 @@ SceneHit WarehouseScene::cast(const PlanesInView& view, const Eigen::Vector3d& d
     hit.point = o + hit.t * d;
     hit.label = best->id;
     hit.dynamic = false;
-    // Footprint grows as the surface tilts away; the square root keeps grazing floors sharp.
-    const double cos_incidence = std::abs(best->normal.dot(d)) / d.norm();
-    const double footprint = footprint_per_t * hit.t / std::sqrt(std::max(cos_incidence, 0.05));
-    hit.intensity = best->shade * best->texture.sample(best_u, best_v, footprint);
+    hit.intensity = best->shadeAt(best_u, best_v, d, hit.t, footprint_per_t);
     for (const DiscMarker& m : params_.markers)
       if ((hit.point - m.centre).squaredNorm() <= m.radius * m.radius) hit.intensity = m.intensity;
   }

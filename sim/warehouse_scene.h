@@ -1,23 +1,29 @@
 #pragma once
 // The simulated warehouse: a closed room (floor, four walls, optional ceiling), crates inside the
 // flight circle, racks along the walls — every visible face a textured rectangle with its own,
-// stable plane id — and characters: the paper's dancers around the circle's centre, or a crowd
-// given by setCharacters (sim/crowd.h).
+// stable plane id — characters (the paper's dancers around the circle's centre, or a crowd
+// given by setCharacters, sim/crowd.h), and optional moving planar objects (pallet trucks
+// carrying boxes, sliding panels) driving back and forth inside the circle.
 //
-// Plane ids: floor 1, walls 2..5, ceiling 6, then crate and rack faces from 10 upwards.
-// Mask labels: plane id on static planes, 0 on characters, 255 where the ray hits nothing.
+// Plane ids: floor 1, walls 2..5, ceiling 6, then crate and rack faces from 10 upwards (below 100:
+// the mask degradation's split plane takes id + 100); faces of moving objects 200..239.
+// Mask labels: plane id on static planes and on moving faces (as a CNN labels them; the renderer's
+// `dynamic` image tells them apart), 0 on characters, 255 where the ray hits nothing.
 #include <Eigen/Core>
 #include <memory>
 #include <utility>
 #include <vector>
 
 #include "sim/character.h"
-#include "sim/mip_texture.h"
+#include "sim/moving_planar_object.h"
+#include "sim/scene_plane.h"
 
 namespace rpvio::sim {
 
 constexpr int kMaskCharacter = 0;
 constexpr int kMaskNothing = 255;
+constexpr int kMovingPlaneIdFirst = 200, kMovingPlaneIdLast = 239;
+constexpr int kPalletTruckFaces = 10, kSlidingPanelFaces = 2;
 
 /// A flat disc painted on a surface (tests measure where the renderer draws it).
 struct DiscMarker {
@@ -37,18 +43,11 @@ struct SceneParams {
   int characters = 0;  // the paper's dancers on a ring (unless setCharacters replaces them)
   double character_ring_radius = 10.5;  // m; < 15 sin 45°: in the 90° view from the circle
   double character_height = 1.8;        // m
+  int pallet_trucks = 0;                // moving planar objects (ids 200..239: at most 40 faces)
+  int sliding_panels = 0;
+  double moving_speed = 1.5;  // m/s, peak speed of trucks and panels
   uint64_t seed = 1;
   std::vector<DiscMarker> markers;
-};
-
-struct ScenePlane {
-  int id = 0;
-  Eigen::Vector3d origin, u_axis, v_axis, normal;  // rectangle corner, in-plane unit axes, normal
-  double width = 0, height = 0;                    // extents along u and v (m)
-  float shade = 1.0f;                              // fixed lighting of this face
-  MipTexture texture;
-  /// World plane n·X = d.
-  double distance() const { return normal.dot(origin); }
 };
 
 struct SceneHit {
@@ -64,7 +63,8 @@ class WarehouseScene {
  public:
   explicit WarehouseScene(const SceneParams& params);
 
-  /// Poses the characters at time t; the queries below are then read-only (thread-safe).
+  /// Poses the characters and moving objects at time t; the queries below are then read-only
+  /// (thread-safe).
   void setTime(double t);
   /// The planes a ray from `origin` can hit: those whose front side faces it, in scene order, each
   /// with n·(p0 − origin) (< 0). Computed once per camera position, shared by its rays.
@@ -88,17 +88,19 @@ class WarehouseScene {
   const std::vector<Character>& characters() const { return characters_; }
   /// Replaces the characters (the paper's ring of dancers) by others.
   void setCharacters(std::vector<Character> characters) { characters_ = std::move(characters); }
+  const std::vector<MovingPlanarObject>& movingObjects() const { return moving_; }
   const SceneParams& params() const { return params_; }
 
  private:
   void addRectangle(int id, const Eigen::Vector3d& centre, const Eigen::Vector3d& normal,
                     const Eigen::Vector3d& u_axis, double width, double height, TextureStyle style);
-  void addBox(int& next_id, const Eigen::Vector2d& centre, double yaw, double half_x, double half_y,
-              double height, TextureStyle style);
+  void addPalletTruck(int& next_id, double angle, double phase);
+  void addSlidingPanel(int& next_id, double angle, double phase);
 
   SceneParams params_;
   std::vector<ScenePlane> planes_;
   std::vector<Character> characters_;
+  std::vector<MovingPlanarObject> moving_;
 };
 
 }  // namespace rpvio::sim

@@ -98,7 +98,8 @@ void writeJson(const EvalAppOptions& opt, const EvalAppResult& res) {
       out << ",\n  \"plane_map\": {\"file\": " << jsonString(opt.planes_file)
           << ", \"map_planes\": " << m.map_planes << ", \"true_planes\": " << m.planes.size()
           << ", \"duplicates\": " << m.duplicates << ", \"mixed\": " << m.mixed
-          << ", \"unmatched\": " << m.unmatched << ",\n    \"planes\": [";
+          << ", \"unmatched\": " << m.unmatched << ", \"on_moving\": " << m.on_moving
+          << ",\n    \"planes\": [";
       for (size_t k = 0; k < m.planes.size(); ++k) {
         const auto& p = m.planes[k];
         out << (k ? ",\n      " : "\n      ") << "{\"id\": " << p.true_id
@@ -136,11 +137,11 @@ std::string formatPlaneMapReport(const eval::PlaneMapAccuracy& m) {
   char line[400];
   std::snprintf(line, sizeof(line),
                 "\nplane map: %zu entries for %zu true planes (duplicates %zu, mixed %zu, "
-                "unmatched %zu); normal error median %.2f max %.2f deg, offset error median "
-                "%.3f max %.3f m\n%6s %8s %11s %11s %8s %11s %11s\n",
-                m.map_planes, m.planes.size(), m.duplicates, m.mixed, m.unmatched, n.median, n.max,
-                d.median, d.max, "plane", "entries", "normal deg", "offset m", "seen s",
-                "sigma deg", "sigma m");
+                "unmatched %zu, on moving objects %zu); normal error median %.2f max %.2f deg, "
+                "offset error median %.3f max %.3f m\n%6s %8s %11s %11s %8s %11s %11s\n",
+                m.map_planes, m.planes.size(), m.duplicates, m.mixed, m.unmatched, m.on_moving,
+                n.median, n.max, d.median, d.max, "plane", "entries", "normal deg", "offset m",
+                "seen s", "sigma deg", "sigma m");
   out << line;
   for (const auto& p : m.planes) {
     std::snprintf(line, sizeof(line), "%6d %8zu %11.2f %11.3f %8.1f %11.2f %11.3f\n", p.true_id,

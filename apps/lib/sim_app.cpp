@@ -26,8 +26,9 @@ const char* kUsage =
     "                 --out FILE.png\n"
     "  Writes DIR/seq.rawlog (+ seq_Images/), DIR/groundtruth.tum, DIR/groundtruth_biases.csv,\n"
     "  DIR/groundtruth_planes.yaml (the scene's planes, id = mask label, in the plane map's\n"
-    "  schema), DIR/calib.ini, DIR/dynamic_fraction.csv (per frame: the fraction of the image\n"
-    "  moving things cover) and DIR/sequence.json (profile, seed, coverage figures).\n"
+    "  schema; moving objects' faces at t = 0 with their motion), DIR/calib.ini,\n"
+    "  DIR/dynamic_fraction.csv (per frame: the fraction of the image moving things cover) and\n"
+    "  DIR/sequence.json (profile, seed, coverage figures).\n"
     "  --suite writes DIR/{static,C1,C2,C4,C6,C8}/ with the same seed (CN: N characters).\n"
     "  --profile: paper (default; the paper's RPVIO-Sim warehouse) or hard (a crowd that fills\n"
     "  the view, CNN-like masks); --config INI overrides keys of the profile (every key:\n"
@@ -141,6 +142,21 @@ std::vector<Plane> truePlanes(const sim::WarehouseScene& scene, double duration)
     p.mask_ids = {s.id};
     p.last_seen = duration;
     planes.push_back(p);
+  }
+  for (const sim::MovingPlanarObject& object : scene.movingObjects()) {
+    for (const sim::PosedFace& face : object.faces(0)) {
+      Plane p;
+      p.id = face.id;
+      p.normal = face.normal;
+      p.distance = face.distance;
+      p.covariance.setZero();
+      p.polygon.assign(face.corners.begin(), face.corners.end());
+      p.mask_ids = {face.id};
+      p.last_seen = duration;
+      p.moving = true;
+      p.motion = object.motion();
+      planes.push_back(p);
+    }
   }
   return planes;
 }

@@ -2,7 +2,9 @@
 // on (n, d), duplicates, wrong merges; and rpvio-eval --planes on a simulated scene's true planes.
 #include <gtest/gtest.h>
 
+#include "common/input_error.h"
 #include "evaluation/plane_map_accuracy.h"
+#include "evaluation/plane_visibility.h"
 #include "planes_map/plane_map_exporters.h"
 #include "tests/test_util.h"
 
@@ -128,6 +130,67 @@ TEST(PlaneMapAccuracy, EvalAppReadsTheSimulatorsTruePlanes) {
                              out),
             2)
       << out;
+}
+
+TEST(PlaneMapAccuracy, MovingTruePlanesAreReadButNotScored) {
+  test::TempDir dir;
+  test::writeText(dir.file("scene.ini"), "[scene]\npallet_trucks = 1\nsliding_panels = 1\n");
+  std::string out;
+  ASSERT_EQ(test::runCommand(test::binDir() + "/rpvio-sim --characters 0 --duration 0.1 --config " +
+                                 dir.file("scene.ini") + " --out " + dir.file("seq"),
+                             out),
+            0)
+      << out;
+  const auto truth = readPlanesYaml(dir.file("seq/groundtruth_planes.yaml"));
+  std::vector<Plane> moving;
+  for (const Plane& p : truth)
+    if (p.moving) moving.push_back(p);
+  ASSERT_EQ(moving.size(), 12u);  // a truck's 10 faces, a panel's 2
+  for (const Plane& p : moving) {
+    EXPECT_GE(p.id, 200);
+    EXPECT_LE(p.id, 239);
+    EXPECT_NEAR(p.motion.axis.norm(), 1, 1e-9);
+    EXPECT_GT(p.motion.amplitude, 1);
+    // Peak speed 2π A / T: the default 1.5 m/s.
+    EXPECT_NEAR(2 * M_PI * p.motion.amplitude / p.motion.period, 1.5, 1e-6);
+  }
+  // The truth as a map, every plane observed: the static ones scored, the moving ones counted
+  // apart, and none missing, though all were visible for long.
+  const auto a = eval::evaluatePlaneMap(truth, truth, eval::Similarity{});
+  EXPECT_EQ(a.planes.size(), truth.size() - moving.size());
+  EXPECT_EQ(a.on_moving, moving.size());
+  EXPECT_EQ(a.unmatched, 0u);
+  for (const auto& p : a.planes) EXPECT_LT(p.true_id, 200);
+  std::map<int, eval::LabelVisibility> visible;
+  for (const Plane& p : truth) visible[p.id] = {10, 10};
+  const std::vector<Plane> statics(truth.begin(), truth.end() - moving.size());
+  const auto missing =
+      eval::missingPlanes(eval::evaluatePlaneMap(statics, truth, {}), truth, visible);
+  EXPECT_TRUE(missing.missing.empty());
+  EXPECT_TRUE(missing.untrackable.empty());
+}
+
+TEST(PlaneMapAccuracy, PlaneMotionSurvivesTheYamlRoundTrip) {
+  test::TempDir dir;
+  Plane p = plane(205, {0, 1, 0}, 2, {205});
+  p.polygon = {{0, 2, 0}, {1, 2, 0}, {1, 2, 1}};
+  p.moving = true;
+  p.motion.axis = Eigen::Vector3d(0.6, 0, 0.8);
+  p.motion.amplitude = 3.5;
+  p.motion.period = 14.25;
+  p.motion.phase = -0.75;
+  writePlanesYaml(dir.file("p.yaml"), {plane(1, {0, 0, 1}, 0, {1}), p});
+  const auto back = readPlanesYaml(dir.file("p.yaml"));
+  ASSERT_EQ(back.size(), 2u);
+  EXPECT_FALSE(back[0].moving);
+  const std::string text = test::readFile(dir.file("p.yaml"));
+  EXPECT_EQ(text.find("moving"), text.rfind("moving"));  // the static plane has no such key
+  ASSERT_TRUE(back[1].moving);
+  for (double t : {0.0, 1.3, 9.0})
+    EXPECT_LT((back[1].motion.offset(t) - p.motion.offset(t)).norm(), 1e-9);
+  EXPECT_EQ(back[1].polygon.size(), 3u);
+  test::writeText(dir.file("bad.yaml"), "planes:\n  - id: 3\n    moving: perhaps\n");
+  EXPECT_THROW(readPlanesYaml(dir.file("bad.yaml")), InputError);
 }
 
 }  // namespace
