@@ -146,4 +146,19 @@ double DancingCharacter::signedDistance(const Eigen::Vector3d& x) const {
   return best;
 }
 
+Eigen::Vector3d DancingCharacter::follow(const Eigen::Vector3d& x,
+                                         const DancingCharacter& other) const {
+  int part = 0;
+  double best = INFINITY;
+  for (int k = 0; k < kParts; ++k) {
+    const double off = std::abs((x - closestOnSegment(parts_[k], x)).norm() - parts_[k].radius);
+    if (off < best) best = off, part = k;
+  }
+  const Capsule &now = parts_[part], &then = other.parts_[part];
+  const Eigen::Vector3d ab = now.b - now.a, ab_then = then.b - then.a;
+  const double s = std::clamp((x - now.a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  const Eigen::Vector3d radial = x - (now.a + s * ab);
+  return then.a + s * ab_then + Eigen::Quaterniond::FromTwoVectors(ab, ab_then) * radial;
+}
+
 }  // namespace rpvio::sim

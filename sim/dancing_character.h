@@ -33,6 +33,9 @@ class DancingCharacter {
                                         double t_max) const;
   /// Distance from a world point to the figure's surface (negative inside).
   double signedDistance(const Eigen::Vector3d& x) const;
+  /// Where the surface point x of this posed figure is on `other` (the same figure posed at another
+  /// time): same part, same place along it, radial offset turned with the part's axis.
+  Eigen::Vector3d follow(const Eigen::Vector3d& x, const DancingCharacter& other) const;
   const Eigen::Vector2d& base() const { return base_; }
 
  private:

@@ -43,6 +43,7 @@ WarehouseScene::WarehouseScene(const SceneParams& p) : params_(p) {
              TextureStyle::Shelf);
     }
   }
+  addLightPanels();
   for (int k = 0; k < p.characters; ++k) {
     const double angle = 2 * M_PI * k / p.characters + 0.4;
     const Eigen::Vector2d base =
@@ -67,6 +68,30 @@ void WarehouseScene::addRectangle(int id, const Eigen::Vector3d& centre,
                                                 params_.seed * 257 + static_cast<uint64_t>(id)),
                              params_.texel_size);
   planes_.push_back(std::move(plane));
+}
+
+void WarehouseScene::addLightPanels() {
+  constexpr int kFirstId = 180, kMaxPanels = 20, kPerWall = 5;
+  const int walls[4] = {4, 5, 2, 3};                     // wall 4 faces the start of the flight
+  const double offsets[kPerWall] = {0, -8, 8, -16, 16};  // m along the wall from its middle
+  const double H = params_.room_height;
+  for (int k = 0; k < std::min(params_.light_panels, kMaxPanels); ++k) {
+    const ScenePlane& wall = *plane(walls[k / kPerWall]);
+    // 6 m x 3.5 m, above the racks (<= 4.5 m), 1 cm in front of the wall.
+    const Eigen::Vector3d centre = wall.origin +
+                                   (0.5 * wall.width + offsets[k % kPerWall]) * wall.u_axis +
+                                   0.65 * H * Eigen::Vector3d::UnitZ() + 0.01 * wall.normal;
+    ScenePlane panel;
+    panel.id = kFirstId + k;
+    panel.normal = wall.normal;
+    panel.u_axis = wall.u_axis;
+    panel.v_axis = wall.v_axis;
+    panel.width = 6.0;
+    panel.height = 3.5;
+    panel.origin = centre - 0.5 * panel.width * panel.u_axis - 0.5 * panel.height * panel.v_axis;
+    panel.emission = static_cast<float>(params_.light_intensity);
+    planes_.push_back(std::move(panel));
+  }
 }
 
 void WarehouseScene::addBox(int& next_id, const Eigen::Vector2d& c, double yaw, double half_x,
@@ -138,7 +163,9 @@ SceneHit WarehouseScene::cast(const PlanesInView& view, const Eigen::Vector3d& d
     // Footprint grows as the surface tilts away; the square root keeps grazing floors sharp.
     const double cos_incidence = std::abs(best->normal.dot(d)) / d.norm();
     const double footprint = footprint_per_t * hit.t / std::sqrt(std::max(cos_incidence, 0.05));
-    hit.intensity = best->shade * best->texture.sample(best_u, best_v, footprint);
+    hit.intensity = best->emission > 0
+                        ? best->emission
+                        : best->shade * best->texture.sample(best_u, best_v, footprint);
     for (const DiscMarker& m : params_.markers)
       if ((hit.point - m.centre).squaredNorm() <= m.radius * m.radius) hit.intensity = m.intensity;
   }

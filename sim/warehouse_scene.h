@@ -1,9 +1,11 @@
 #pragma once
 // The simulated warehouse: a closed room (floor, four walls, optional ceiling), crates inside the
 // flight circle, racks along the walls — every visible face a textured rectangle with its own,
-// stable plane id — and dancing characters around the circle's centre.
+// stable plane id — dancing characters around the circle's centre, and optional light panels
+// (windows high on the walls, far brighter than the surfaces: they saturate the 8-bit image).
 //
-// Plane ids: floor 1, walls 2..5, ceiling 6, then crate and rack faces from 10 upwards.
+// Plane ids: floor 1, walls 2..5, ceiling 6, then crate and rack faces from 10 upwards, light
+// panels 180..199.
 // Mask labels: plane id on static planes, 0 on characters, 255 where the ray hits nothing.
 #include <Eigen/Core>
 #include <memory>
@@ -36,6 +38,8 @@ struct SceneParams {
   int characters = 0;
   double character_ring_radius = 10.5;  // m; < 15 sin 45°: in the 90° view from the circle
   double character_height = 1.8;        // m
+  int light_panels = 0;                 // windows, on wall 4 (seen at the start) first, 5 per wall
+  double light_intensity = 2000;        // radiance of the panels (surfaces are 0..255)
   uint64_t seed = 1;
   std::vector<DiscMarker> markers;
 };
@@ -45,6 +49,7 @@ struct ScenePlane {
   Eigen::Vector3d origin, u_axis, v_axis, normal;  // rectangle corner, in-plane unit axes, normal
   double width = 0, height = 0;                    // extents along u and v (m)
   float shade = 1.0f;                              // fixed lighting of this face
+  float emission = 0;  // > 0: a light panel of this constant radiance (no texture)
   MipTexture texture;
   /// World plane n·X = d.
   double distance() const { return normal.dot(origin); }
@@ -90,6 +95,7 @@ class WarehouseScene {
  private:
   void addRectangle(int id, const Eigen::Vector3d& centre, const Eigen::Vector3d& normal,
                     const Eigen::Vector3d& u_axis, double width, double height, TextureStyle style);
+  void addLightPanels();
   void addBox(int& next_id, const Eigen::Vector2d& centre, double yaw, double half_x, double half_y,
               double height, TextureStyle style);
 
