@@ -36,10 +36,11 @@ cv::Mat motionBlur(const SceneRadiance& sharp, const WarehouseScene& scene,
   const std::vector<DancingCharacter>& now = scene.characters();
   const std::vector<DancingCharacter> open = posedAt(now, shutter.t_open);
   const std::vector<DancingCharacter> close = posedAt(now, shutter.t_close);
+  // Static points move with the camera only: camera frame at t → camera frames at the shutter.
   const Eigen::Isometry3d C_open = shutter.T_WC_open.inverse(),
                           C_close = shutter.T_WC_close.inverse();
-  auto project = [&](const Eigen::Isometry3d& T_CW, const Eigen::Vector3d& X, Eigen::Vector2d& px) {
-    const Eigen::Vector3d Xc = T_CW * X;
+  const Eigen::Isometry3d open_from_now = C_open * T_WC, close_from_now = C_close * T_WC;
+  auto project = [&](const Eigen::Vector3d& Xc, Eigen::Vector2d& px) {
     if (Xc.z() <= 1e-6) return false;
     px = Eigen::Vector2d(cam.fx * Xc.x() / Xc.z() + cam.cx, cam.fy * Xc.y() / Xc.z() + cam.cy);
     return true;
@@ -48,19 +49,20 @@ cv::Mat motionBlur(const SceneRadiance& sharp, const WarehouseScene& scene,
   cv::Mat blurred(sharp.radiance.size(), CV_32F);
   parallelRows(cam.height, threads, [&](int r) {
     for (int c = 0; c < cam.width; ++c) {
-      const auto [o, d] = pixelRay(cam, T_WC, c, r);
       const float depth = sharp.depth.at<float>(r, c);
-      const Eigen::Vector3d X = o + (depth > 0 ? depth : kFar) * d;
-      Eigen::Vector3d X_open = X, X_close = X;
+      const Eigen::Vector3d Xc = (depth > 0 ? depth : kFar) *
+                                 Eigen::Vector3d((c - cam.cx) / cam.fx, (r - cam.cy) / cam.fy, 1);
+      Eigen::Vector3d Xc_open = open_from_now * Xc, Xc_close = close_from_now * Xc;
       if (sharp.mask.at<uint8_t>(r, c) == kMaskCharacter) {
+        const Eigen::Vector3d X = T_WC * Xc;
         size_t k = 0;  // the character whose surface X is on
         for (size_t j = 1; j < now.size(); ++j)
           if (std::abs(now[j].signedDistance(X)) < std::abs(now[k].signedDistance(X))) k = j;
-        X_open = now[k].follow(X, open[k]);
-        X_close = now[k].follow(X, close[k]);
+        Xc_open = C_open * now[k].follow(X, open[k]);
+        Xc_close = C_close * now[k].follow(X, close[k]);
       }
       Eigen::Vector2d p_open, p_close;
-      if (!project(C_open, X_open, p_open) || !project(C_close, X_close, p_close)) {
+      if (!project(Xc_open, p_open) || !project(Xc_close, p_close)) {
         blurred.at<float>(r, c) = sharp.radiance.at<float>(r, c);
         continue;
       }
