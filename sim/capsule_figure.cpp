@@ -1,5 +1,6 @@
 #include "sim/capsule_figure.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 
@@ -88,6 +89,20 @@ std::optional<CharacterHit> CapsuleFigure::intersect(const Eigen::Vector3d& o,
   const double stripe = std::fmod(std::abs(along), 1.0) < 0.3 ? 0.4 : 1.0;
   hit.albedo = static_cast<float>(best_part == 0 ? 150 + 60 * tone : 30 + 200 * tone * stripe);
   return hit;
+}
+
+Eigen::Vector3d CapsuleFigure::follow(const Eigen::Vector3d& x, const CapsuleFigure& other) const {
+  size_t part = 0;
+  double best = INFINITY;
+  for (size_t k = 0; k < parts_.size(); ++k) {
+    const double off = std::abs((x - closestOnSegment(parts_[k], x)).norm() - parts_[k].radius);
+    if (off < best) best = off, part = k;
+  }
+  const Capsule &now = parts_[part], &then = other.parts_[part];
+  const Eigen::Vector3d ab = now.b - now.a, ab_then = then.b - then.a;
+  const double s = std::clamp((x - now.a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  const Eigen::Vector3d radial = x - (now.a + s * ab);
+  return then.a + s * ab_then + Eigen::Quaterniond::FromTwoVectors(ab, ab_then) * radial;
 }
 
 double CapsuleFigure::signedDistance(const Eigen::Vector3d& x) const {

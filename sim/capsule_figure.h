@@ -29,6 +29,9 @@ class CapsuleFigure {
                                         double t_max) const;
   /// Distance from a world point to the figure's surface (negative inside).
   double signedDistance(const Eigen::Vector3d& x) const;
+  /// Where the surface point x of this figure is on `other` (the same figure in another pose): same
+  /// part, same place along it, radial offset turned with the part's axis.
+  Eigen::Vector3d follow(const Eigen::Vector3d& x, const CapsuleFigure& other) const;
   const std::vector<Capsule>& parts() const { return parts_; }
 
  private:

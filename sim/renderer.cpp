@@ -2,25 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <thread>
-#include <vector>
+
+#include "sim/parallel_rows.h"
 
 namespace rpvio::sim {
-namespace {
-
-/// Runs body(row) for every row, split over threads in interleaved blocks.
-template <typename Body>
-void parallelRows(int rows, int threads, Body body) {
-  const int n = threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
-  std::vector<std::thread> workers;
-  for (int w = 0; w < n; ++w)
-    workers.emplace_back([=] {
-      for (int r = w; r < rows; r += n) body(r);
-    });
-  for (auto& t : workers) t.join();
-}
-
-}  // namespace
 
 std::pair<Eigen::Vector3d, Eigen::Vector3d> pixelRay(const PinholeCamera& cam,
                                                      const Eigen::Isometry3d& T_WC, double u,
@@ -29,11 +14,11 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> pixelRay(const PinholeCamera& cam,
   return {T_WC.translation(), T_WC.linear() * d_c};
 }
 
-RenderedFrame renderFrame(const WarehouseScene& scene, const PinholeCamera& cam,
-                          const Eigen::Isometry3d& T_WC, const RenderOptions& opt,
-                          uint64_t noise_seed) {
+SceneRadiance renderRadiance(const WarehouseScene& scene, const PinholeCamera& cam,
+                             const Eigen::Isometry3d& T_WC, const RenderOptions& opt) {
   const int W = cam.width, H = cam.height;
-  cv::Mat intensity(H, W, CV_32F), labels(H, W, CV_8U), dynamic(H, W, CV_8U);
+  cv::Mat intensity(H, W, CV_32F), labels(H, W, CV_8U), dynamic(H, W, CV_8U), depth(H, W, CV_32F);
+  cv::Mat mover(H, W, CV_16S);
   const double footprint_per_depth = 1.0 / cam.fx;  // one pixel at depth 1 m
   const int k = std::max(1, opt.supersampling);
   const WarehouseScene::PlanesInView view = scene.planesInView(T_WC.translation());
@@ -47,6 +32,11 @@ RenderedFrame renderFrame(const WarehouseScene& scene, const PinholeCamera& cam,
       const SceneHit centre = shade(c, r);
       labels.at<uint8_t>(r, c) = static_cast<uint8_t>(centre.label);
       dynamic.at<uint8_t>(r, c) = centre.dynamic ? 255 : 0;
+      depth.at<float>(r, c) = static_cast<float>(centre.t);
+      mover.at<int16_t>(r, c) =
+          static_cast<int16_t>(centre.character >= 0       ? centre.character
+                               : centre.moving_object >= 0 ? kMoverObjectBase + centre.moving_object
+                                                           : -1);
       if (opt.supersampling <= 0) {
         intensity.at<float>(r, c) = centre.intensity;
         continue;
@@ -76,14 +66,21 @@ RenderedFrame renderFrame(const WarehouseScene& scene, const PinholeCamera& cam,
       }
     });
   }
+  return {intensity, labels, dynamic, depth, mover};
+}
 
+cv::Mat exposeImage(const cv::Mat& radiance, const PinholeCamera& cam, const RenderOptions& opt,
+                    double gain, uint64_t noise_seed) {
+  const int W = cam.width, H = cam.height;
+  cv::Mat intensity(H, W, CV_32F);
   // Vignetting: darkening growing with the squared distance from the principal point.
   const double r_max2 = cam.cx * cam.cx + cam.cy * cam.cy;
   for (int r = 0; r < H; ++r) {
-    float* row = intensity.ptr<float>(r);
+    const float* in = radiance.ptr<float>(r);
+    float* out = intensity.ptr<float>(r);
     for (int c = 0; c < W; ++c) {
       const double d2 = (c - cam.cx) * (c - cam.cx) + (r - cam.cy) * (r - cam.cy);
-      row[c] *= static_cast<float>(1.0 - opt.vignetting * d2 / r_max2);
+      out[c] = in[c] * static_cast<float>(gain * (1.0 - opt.vignetting * d2 / r_max2));
     }
   }
   if (opt.noise_sigma > 0) {
@@ -92,11 +89,16 @@ RenderedFrame renderFrame(const WarehouseScene& scene, const PinholeCamera& cam,
     rng.fill(noise, cv::RNG::NORMAL, 0.0, opt.noise_sigma);
     intensity += noise;
   }
-  RenderedFrame frame;
-  intensity.convertTo(frame.image, CV_8U);  // rounds and saturates to 0..255
-  frame.mask = labels;
-  frame.dynamic = dynamic;
-  return frame;
+  cv::Mat image;
+  intensity.convertTo(image, CV_8U);  // rounds and saturates to 0..255
+  return image;
+}
+
+RenderedFrame renderFrame(const WarehouseScene& scene, const PinholeCamera& cam,
+                          const Eigen::Isometry3d& T_WC, const RenderOptions& opt,
+                          uint64_t noise_seed) {
+  const SceneRadiance sharp = renderRadiance(scene, cam, T_WC, opt);
+  return {exposeImage(sharp.radiance, cam, opt, 1.0, noise_seed), sharp.mask, sharp.dynamic};
 }
 
 }  // namespace rpvio::sim

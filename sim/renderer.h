@@ -1,7 +1,9 @@
 #pragma once
 // Ray-casting renderer of the warehouse for a pinhole camera: image (8-bit, filtered textures,
 // anti-aliased edges, vignetting, Gaussian noise) and the plane-instance label mask of the same
-// instant. Pixel (u, v) integer coordinates are pixel centres (OpenCV convention).
+// instant. Two stages: the scene's radiance at the pixels (renderRadiance), then the sensor
+// (exposeImage), so that camera effects (motion_blur.h, auto_exposure.h) can act in between.
+// Pixel (u, v) integer coordinates are pixel centres (OpenCV convention).
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 
@@ -27,8 +29,29 @@ struct RenderedFrame {
   cv::Mat dynamic;  // CV_8UC1, 255 where the pixel centre sees a moving thing (ground truth)
 };
 
-/// Renders the scene as posed (WarehouseScene::setTime) from camera pose T_WC (camera in world).
-/// Deterministic for a given noise_seed, whatever the thread count.
+constexpr int16_t kMoverObjectBase = 1000;
+
+/// What reaches the sensor from the scene as posed, at one instant.
+struct SceneRadiance {
+  cv::Mat radiance;  // CV_32F, shaded intensity (0..255 on surfaces; more on light panels)
+  cv::Mat mask;      // CV_8UC1 labels
+  cv::Mat dynamic;   // CV_8UC1, 255 on moving things
+  cv::Mat depth;     // CV_32F, camera-z depth of the point at the pixel centre (0: nothing hit)
+  cv::Mat mover;     // CV_16S, what moving thing the pixel centre sees: character k as k, moving
+                     // object j as kMoverObjectBase + j, -1 nothing that moves
+};
+
+/// The scene as posed (WarehouseScene::setTime) seen from camera pose T_WC (camera in world).
+SceneRadiance renderRadiance(const WarehouseScene& scene, const PinholeCamera& camera,
+                             const Eigen::Isometry3d& T_WC, const RenderOptions& options);
+
+/// The sensor: radiance × gain × vignetting, plus Gaussian noise, rounded and saturated to 8 bits.
+cv::Mat exposeImage(const cv::Mat& radiance, const PinholeCamera& camera,
+                    const RenderOptions& options, double gain, uint64_t noise_seed);
+
+/// renderRadiance then exposeImage at gain 1: the sharp image of an instant.
+/// (WarehouseScene::setTime) from camera pose T_WC (camera in world). Deterministic for a given
+/// noise_seed, whatever the thread count.
 RenderedFrame renderFrame(const WarehouseScene& scene, const PinholeCamera& camera,
                           const Eigen::Isometry3d& T_WC, const RenderOptions& options,
                           uint64_t noise_seed);

@@ -10,6 +10,7 @@ const Eigen::Vector3d kLight = Eigen::Vector3d(0.4, 0.3, 0.85).normalized();
 
 float ScenePlane::shadeAt(double u, double v, const Eigen::Vector3d& d, double t,
                           double footprint_per_t) const {
+  if (emission > 0) return emission;
   // Footprint grows as the surface tilts away; the square root keeps grazing floors sharp.
   const double cos_incidence = std::abs(normal.dot(d)) / d.norm();
   const double footprint = footprint_per_t * t / std::sqrt(std::max(cos_incidence, 0.05));

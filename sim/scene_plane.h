@@ -15,7 +15,8 @@ struct ScenePlane {
   int id = 0;
   Eigen::Vector3d origin, u_axis, v_axis, normal;  // rectangle corner, in-plane unit axes, normal
   double width = 0, height = 0;                    // extents along u and v (m)
-  float shade = 1.0f;                              // fixed lighting of this face
+  float emission = 0;  // > 0: a light panel of this constant radiance (no texture)
+  float shade = 1.0f;  // fixed lighting of this face
   MipTexture texture;
   /// World plane n·X = d.
   double distance() const { return normal.dot(origin); }

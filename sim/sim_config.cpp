@@ -99,6 +99,10 @@ SimConfig SimConfig::load(const std::string& path, const SimConfig& base) {
   num("scene", "texel_size", s.texel_size);
   num("scene", "character_ring_radius", s.character_ring_radius);
   num("scene", "character_height", s.character_height);
+  double lights = s.light_panels;
+  num("scene", "light_panels", lights);
+  num("scene", "light_intensity", s.light_intensity);
+  s.light_panels = static_cast<int>(lights);
   num("scene", "pallet_trucks", trucks);
   num("scene", "sliding_panels", panels);
   num("scene", "moving_speed", s.moving_speed);
@@ -134,6 +138,24 @@ SimConfig SimConfig::load(const std::string& path, const SimConfig& base) {
   double ss = c.render.supersampling;
   num("image", "supersampling", ss);
   c.render.supersampling = static_cast<int>(ss);
+  num("image", "exposure_time", c.exposure_time);
+  if (c.exposure_time < 0)
+    throw InputError(path, "line " + std::to_string(ini.line("image", "exposure_time")),
+                     "'exposure_time' must not be negative");
+  AutoExposureParams& ae = c.auto_exposure;
+  ae.enabled = ini.flagOr("image", "auto_exposure", ae.enabled);
+  num("image", "exposure_target", ae.target);
+  num("image", "exposure_time_constant", ae.time_constant);
+  num("image", "initial_gain", ae.initial_gain);
+  num("image", "min_gain", ae.min_gain);
+  num("image", "max_gain", ae.max_gain);
+  positive("image", "exposure_target", ae.target);
+  positive("image", "exposure_time_constant", ae.time_constant);
+  positive("image", "initial_gain", ae.initial_gain);
+  positive("image", "min_gain", ae.min_gain);
+  if (ae.max_gain < ae.min_gain)
+    throw InputError(path, "line " + std::to_string(ini.line("image", "max_gain")),
+                     "'max_gain' must not be below 'min_gain'");
 
   num("imu", "rate_hz", c.imu.rate_hz);
   num("imu", "gyro_noise_density", c.imu.gyro_noise_density);

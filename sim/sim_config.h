@@ -4,6 +4,7 @@
 #include <string>
 
 #include "common/sensor_types.h"
+#include "sim/auto_exposure.h"
 #include "sim/crowd.h"
 #include "sim/fault_injection.h"
 #include "sim/flight_trajectory.h"
@@ -26,6 +27,8 @@ struct SimConfig {
   PinholeCamera camera = pinholeCamera(640, 480, 90);
   Eigen::Isometry3d T_BC = defaultCameraMount();
   RenderOptions render;
+  double exposure_time = 0;  // s, shutter open over [t − e/2, t + e/2] (motion blur); 0: sharp
+  AutoExposureParams auto_exposure;
   ImuNoise imu;  // noise densities, random walks, rate, gravity
   bool imu_noise = true;
   ImuBiasState initial_bias = defaultInitialBias();

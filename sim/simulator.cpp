@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "sim/motion_blur.h"
+
 namespace rpvio::sim {
 namespace {
 SceneParams seeded(SceneParams p, uint64_t seed) {
@@ -11,7 +13,10 @@ SceneParams seeded(SceneParams p, uint64_t seed) {
 }  // namespace
 
 Simulator::Simulator(const SimConfig& config)
-    : config_(config), flight_(config.flight), scene_(seeded(config.scene, config.seed)) {
+    : config_(config),
+      flight_(config.flight),
+      scene_(seeded(config.scene, config.seed)),
+      auto_exposure_(config.auto_exposure, config.camera_rate) {
   if (config.crowd.layout == "flight") {
     const double tan_half_fov = 0.5 * config.camera.width / config.camera.fx;
     scene_.setCharacters(makeFlightCrowd(config.scene.characters, config.crowd, flight_,
@@ -41,11 +46,32 @@ void Simulator::poseAt(double t) {
   posed_time_ = t;
 }
 
+double Simulator::exposureGain(double t) {
+  if (!config_.auto_exposure.enabled) return 1.0;
+  const PinholeCamera meter_camera = meteringCamera(config_.camera);
+  return auto_exposure_.gain(t, [&](double t_meter, double gain) {
+    poseAt(t_meter);
+    const cv::Mat radiance =
+        renderRadiance(scene_, meter_camera, cameraPose(t_meter), config_.render).radiance;
+    return meteredBrightness(radiance, meter_camera, config_.render.vignetting, gain);
+  });
+}
+
 RenderedFrame Simulator::render(double t, int frame_index) {
+  const double gain = exposureGain(t);
   poseAt(t);
   const uint64_t frame_seed = config_.seed * 1000003ULL + static_cast<uint64_t>(frame_index);
-  RenderedFrame frame =
-      renderFrame(scene_, config_.camera, cameraPose(t), config_.render, frame_seed);
+  const Eigen::Isometry3d T_WC = cameraPose(t);
+  SceneRadiance sharp = renderRadiance(scene_, config_.camera, T_WC, config_.render);
+  if (config_.exposure_time > 0) {
+    const double t_open = t - 0.5 * config_.exposure_time,
+                 t_close = t + 0.5 * config_.exposure_time;
+    const ShutterInterval shutter{t_open, t_close, cameraPose(t_open), cameraPose(t_close)};
+    sharp.radiance =
+        motionBlur(sharp, scene_, config_.camera, T_WC, shutter, config_.render.threads);
+  }
+  RenderedFrame frame{exposeImage(sharp.radiance, config_.camera, config_.render, gain, frame_seed),
+                      sharp.mask, sharp.dynamic};
   if (config_.mask.enabled()) degradeMask(frame.mask, config_.mask, frame_seed ^ 0x5bd1e995ULL);
   return frame;
 }

@@ -26,7 +26,10 @@ class Simulator {
   /// IMU times of the camera frames: k / camera_rate for k = 0 .. duration * camera_rate.
   std::vector<double> frameTimes() const;
   /// Image and mask at IMU time t; `frame_index` seeds the image noise and mask degradation.
+  /// The image integrates [t − e/2, t + e/2] (exposure_time e) and carries the auto-exposure gain.
   RenderedFrame render(double t, int frame_index);
+  /// Sensor gain of the frame at IMU time t: 1, or the auto-exposure loop's (auto_exposure.h).
+  double exposureGain(double t);
   /// What pixel (u, v) sees at IMU time t (hit point, plane id / character label).
   SceneHit castPixel(double t, double u, double v);
   /// Pixel of world point X at IMU time t, if in front of the camera.
@@ -44,6 +47,7 @@ class Simulator {
   SimConfig config_;
   FlightTrajectory flight_;
   WarehouseScene scene_;
+  AutoExposure auto_exposure_;
   double posed_time_ = 0;
   void poseAt(double t);
 };

@@ -58,6 +58,7 @@ WarehouseScene::WarehouseScene(const SceneParams& p) : params_(p) {
                 TextureStyle::Shelf, p.texel_size, p.seed);
     }
   }
+  addLightPanels();
   for (int k = 0; k < p.characters; ++k) {
     const double angle = 2 * M_PI * k / p.characters + 0.4;
     const Eigen::Vector2d base =
@@ -77,6 +78,30 @@ void WarehouseScene::addRectangle(int id, const Eigen::Vector3d& centre,
                                   double width, double height, TextureStyle style) {
   planes_.push_back(makeRectangle(id, centre, normal, u_axis, width, height, style,
                                   params_.texel_size, params_.seed));
+}
+
+void WarehouseScene::addLightPanels() {
+  constexpr int kFirstId = 180, kMaxPanels = 20, kPerWall = 5;
+  const int walls[4] = {4, 5, 2, 3};                     // wall 4 faces the start of the flight
+  const double offsets[kPerWall] = {0, -8, 8, -16, 16};  // m along the wall from its middle
+  const double H = params_.room_height;
+  for (int k = 0; k < std::min(params_.light_panels, kMaxPanels); ++k) {
+    const ScenePlane& wall = *plane(walls[k / kPerWall]);
+    // 6 m x 3.5 m, above the racks (<= 4.5 m), 1 cm in front of the wall.
+    const Eigen::Vector3d centre = wall.origin +
+                                   (0.5 * wall.width + offsets[k % kPerWall]) * wall.u_axis +
+                                   0.65 * H * Eigen::Vector3d::UnitZ() + 0.01 * wall.normal;
+    ScenePlane panel;
+    panel.id = kFirstId + k;
+    panel.normal = wall.normal;
+    panel.u_axis = wall.u_axis;
+    panel.v_axis = wall.v_axis;
+    panel.width = 6.0;
+    panel.height = 3.5;
+    panel.origin = centre - 0.5 * panel.width * panel.u_axis - 0.5 * panel.height * panel.v_axis;
+    panel.emission = static_cast<float>(params_.light_intensity);
+    planes_.push_back(std::move(panel));
+  }
 }
 
 void WarehouseScene::addPalletTruck(int& next_id, double angle, double phase) {
@@ -134,8 +159,9 @@ SceneHit WarehouseScene::cast(const PlanesInView& view, const Eigen::Vector3d& d
     if (plane->intersectFront(o, d, numerator, hit.t, t, u, v))
       hit.t = t, best = plane, best_u = u, best_v = v;
   }
-  for (const MovingPlanarObject& m : moving_) {
-    if (auto h = m.intersect(o, d, hit.t, footprint_per_t)) {
+  for (size_t k = 0; k < moving_.size(); ++k) {
+    if (auto h = moving_[k].intersect(o, d, hit.t, footprint_per_t)) {
+      hit.moving_object = static_cast<int>(k);
       hit.t = h->t;
       hit.point = h->point;
       hit.label = h->id;
@@ -150,6 +176,7 @@ SceneHit WarehouseScene::cast(const PlanesInView& view, const Eigen::Vector3d& d
       hit.point = c->point;
       hit.label = kMaskCharacter;
       hit.character = static_cast<int>(k);
+      hit.moving_object = -1;
       hit.dynamic = true;
       hit.intensity =
           c->albedo * (0.4f + 0.6f * static_cast<float>(std::max(0.0, c->normal.dot(kLight))));
@@ -160,6 +187,7 @@ SceneHit WarehouseScene::cast(const PlanesInView& view, const Eigen::Vector3d& d
     hit.point = o + hit.t * d;
     hit.label = best->id;
     hit.dynamic = false;
+    hit.moving_object = -1;
     hit.intensity = best->shadeAt(best_u, best_v, d, hit.t, footprint_per_t);
     for (const DiscMarker& m : params_.markers)
       if ((hit.point - m.centre).squaredNorm() <= m.radius * m.radius) hit.intensity = m.intensity;

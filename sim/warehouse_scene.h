@@ -3,10 +3,13 @@
 // flight circle, racks along the walls — every visible face a textured rectangle with its own,
 // stable plane id — characters (the paper's dancers around the circle's centre, or a crowd
 // given by setCharacters, sim/crowd.h), and optional moving planar objects (pallet trucks
-// carrying boxes, sliding panels) driving back and forth inside the circle.
+// carrying boxes, sliding panels) driving back and forth inside the circle, and optional light
+// panels (windows high on the walls, far brighter than the surfaces: they saturate the 8-bit
+// image).
 //
 // Plane ids: floor 1, walls 2..5, ceiling 6, then crate and rack faces from 10 upwards (below 100:
-// the mask degradation's split plane takes id + 100); faces of moving objects 200..239.
+// the mask degradation's split plane takes id + 100); light panels 180..199; faces of moving
+// objects 200..239.
 // Mask labels: plane id on static planes and on moving faces (as a CNN labels them; the renderer's
 // `dynamic` image tells them apart), 0 on characters, 255 where the ray hits nothing.
 #include <Eigen/Core>
@@ -43,6 +46,8 @@ struct SceneParams {
   int characters = 0;  // the paper's dancers on a ring (unless setCharacters replaces them)
   double character_ring_radius = 10.5;  // m; < 15 sin 45°: in the 90° view from the circle
   double character_height = 1.8;        // m
+  int light_panels = 0;                 // windows, on wall 4 (seen at the start) first, 5 per wall
+  double light_intensity = 2000;        // radiance of the panels (surfaces are 0..255)
   int pallet_trucks = 0;                // moving planar objects (ids 200..239: at most 40 faces)
   int sliding_panels = 0;
   double moving_speed = 1.5;  // m/s, peak speed of trucks and panels
@@ -55,6 +60,7 @@ struct SceneHit {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   int label = kMaskNothing;  // plane id, kMaskCharacter or kMaskNothing
   int character = -1;        // index of the character hit, if any
+  int moving_object = -1;    // index of the moving planar object hit, if any
   bool dynamic = false;      // a moving thing (character or moving planar object)
   float intensity = 0;       // shaded surface intensity 0..255
 };
@@ -94,6 +100,7 @@ class WarehouseScene {
  private:
   void addRectangle(int id, const Eigen::Vector3d& centre, const Eigen::Vector3d& normal,
                     const Eigen::Vector3d& u_axis, double width, double height, TextureStyle style);
+  void addLightPanels();
   void addPalletTruck(int& next_id, double angle, double phase);
   void addSlidingPanel(int& next_id, double angle, double phase);
 
