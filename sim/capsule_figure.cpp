@@ -42,6 +42,18 @@ Eigen::Vector3d closestOnSegment(const Capsule& c, const Eigen::Vector3d& x) {
   return c.a + s * ab;
 }
 
+/// Whether o + t·d can meet the sphere (c, r) at some t < t_max (d need not be unit): a cheap
+/// test before exact ones; the radius is padded so that rounding never rejects a true hit.
+bool sphereReachable(const Eigen::Vector3d& c, double r, const Eigen::Vector3d& o,
+                     const Eigen::Vector3d& d, double t_max) {
+  const Eigen::Vector3d oc = o - c;
+  const double padded = r * (1 + 1e-6) + 1e-9;
+  const double qa = d.dot(d), qb = oc.dot(d), qc = oc.dot(oc) - padded * padded;
+  const double disc = qb * qb - qa * qc;
+  if (disc < 0) return false;
+  return (-qb - std::sqrt(disc)) / qa < t_max;  // the entry point comes before t_max
+}
+
 double hash01(int a, int b) {
   uint32_t h = static_cast<uint32_t>(a) * 374761393u + static_cast<uint32_t>(b) * 668265263u;
   h = (h ^ (h >> 13)) * 1274126177u;
@@ -57,6 +69,9 @@ void CapsuleFigure::setParts(std::vector<Capsule> parts, const Eigen::Vector3d& 
   cell_size_ = cell_size;
   seed_ = seed;
   bound_radius_ = 0;
+  part_bounds_.clear();
+  for (const Capsule& p : parts_)
+    part_bounds_.push_back({0.5 * (p.a + p.b), 0.5 * (p.b - p.a).norm() + p.radius});
   for (const Capsule& p : parts_)
     bound_radius_ = std::max({bound_radius_, (p.a - bound_centre_).norm() + p.radius,
                               (p.b - bound_centre_).norm() + p.radius});
@@ -64,13 +79,12 @@ void CapsuleFigure::setParts(std::vector<Capsule> parts, const Eigen::Vector3d& 
 
 std::optional<CharacterHit> CapsuleFigure::intersect(const Eigen::Vector3d& o,
                                                      const Eigen::Vector3d& d, double t_max) const {
-  // Bounding sphere first (d need not be unit).
-  const Eigen::Vector3d oc = o - bound_centre_;
-  const double qa = d.dot(d), qb = oc.dot(d), qc = oc.dot(oc) - bound_radius_ * bound_radius_;
-  if (qb * qb - qa * qc < 0) return std::nullopt;
+  // Bounding spheres first: the figure's, then each part's.
+  if (!sphereReachable(bound_centre_, bound_radius_, o, d, t_max)) return std::nullopt;
   int best_part = -1;
   double best_t = t_max;
   for (size_t k = 0; k < parts_.size(); ++k) {
+    if (!sphereReachable(part_bounds_[k].centre, part_bounds_[k].radius, o, d, best_t)) continue;
     const auto t = intersectCapsule(parts_[k], o, d);
     if (t && *t < best_t) best_t = *t, best_part = static_cast<int>(k);
   }

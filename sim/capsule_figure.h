@@ -36,6 +36,11 @@ class CapsuleFigure {
 
  private:
   std::vector<Capsule> parts_;
+  struct Sphere {
+    Eigen::Vector3d centre;
+    double radius;
+  };
+  std::vector<Sphere> part_bounds_;  // around each part: cheap rejection before the capsule
   Eigen::Vector3d bound_centre_ = Eigen::Vector3d::Zero();
   double bound_radius_ = 0, cell_size_ = 0.06;
   int seed_ = 0;

@@ -49,6 +49,11 @@ SimConfig SimConfig::profile(const std::string& name) {
   c.mask.missed_plane_rate = 0.03;
   c.mask.split_plane_id = 1;
   c.mask.spurious_blob_rate = 0.2;
+  // A real sensor: a 10 ms exposure (indoor light) blurs what moves, an auto-exposure loop reacts
+  // to bright windows on the walls and saturates them.
+  c.exposure_time = 0.01;
+  c.auto_exposure.enabled = true;
+  c.scene.light_panels = 5;
   return c;
 }
 

@@ -24,6 +24,7 @@
 #include "evaluation/trajectory_metrics.h"
 #include "evaluation/trajectory_plot.h"
 #include "rawlog_io/trajectory_io.h"
+#include "sim/sequence_name.h"
 
 namespace fs = std::filesystem;
 
@@ -31,7 +32,8 @@ namespace rpvio::apps {
 namespace {
 
 const char* kUsage =
-    "usage: rpvio-bench --suite DIR [--generate] [--duration SEC] [--seed S]\n"
+    "usage: rpvio-bench --suite DIR [--generate] [--profile paper|hard] [--duration SEC] [--seed "
+    "S]\n"
     "                   [--modes vins-mono,mask-vins,rpvio-single,rpvio-multi]\n"
     "                   [--sequences static,C1,C2,C4,C6,C8] [--runs N] [--jobs J]\n"
     "                   [--config-dir config] --out OUTDIR\n"
@@ -40,11 +42,14 @@ const char* kUsage =
     "  coverage) and writes OUTDIR/results.md, OUTDIR/results.json, OUTDIR/plots/<sequence>.png\n"
     "  and every run's outputs in OUTDIR/runs/<sequence>/<mode>/run<k>/. --generate (re)writes "
     "the\n"
-    "  sequences first with rpvio-sim (--duration, --seed passed on; sequence CN has N dancing\n"
-    "  characters, static none). The pipeline is deterministic: runs of a pair repeat exactly.\n";
+    "  sequences first with rpvio-sim (--profile, --duration, --seed passed on; sequence CN has N\n"
+    "  characters, static none, MP moving planar objects, MP-CN both). --sequences defaults to "
+    "the\n"
+    "  profile's suite (hard: also MP, MP-C4). The pipeline is deterministic: runs of a pair "
+    "repeat\n"
+    "  exactly.\n";
 
 const std::vector<std::string> kModes = {"vins-mono", "mask-vins", "rpvio-single", "rpvio-multi"};
-const std::vector<std::string> kSequences = {"static", "C1", "C2", "C4", "C6", "C8"};
 
 std::vector<std::string> splitList(const std::string& text) {
   std::vector<std::string> out;
@@ -54,12 +59,9 @@ std::vector<std::string> splitList(const std::string& text) {
   return out;
 }
 
-int characters(const std::string& sequence) {
-  if (sequence == "static") return 0;
-  if (sequence.size() > 1 && sequence[0] == 'C' &&
-      sequence.find_first_not_of("0123456789", 1) == std::string::npos)
-    return std::stoi(sequence.substr(1));
-  throw UsageError("unknown sequence '" + sequence + "' (static or C<characters>, e.g. C4)");
+void checkSequenceName(const std::string& sequence) {
+  if (!sim::parseSequenceName(sequence))
+    throw UsageError("unknown sequence '" + sequence + "' (static, C<N>, MP or MP-C<N>, e.g. C4)");
 }
 
 std::string readText(const fs::path& path) {
@@ -108,9 +110,8 @@ void generateSequences(const CommandLine& cli, const std::string& suite,
   runParallel(sequences.size(), jobs, [&](size_t k) {
     const fs::path dir = fs::path(suite) / sequences[k];
     fs::create_directories(dir.parent_path());
-    std::vector<std::string> argv = {sim, "--characters", std::to_string(characters(sequences[k])),
-                                     "--out", dir.string()};
-    for (const char* option : {"duration", "seed"})
+    std::vector<std::string> argv = {sim, "--sequence", sequences[k], "--out", dir.string()};
+    for (const char* option : {"duration", "seed", "profile"})
       if (cli.has(option)) argv.insert(argv.end(), {std::string("--") + option, cli.value(option)});
     const std::string log = (fs::path(suite) / (sequences[k] + ".log")).string();
     fs::remove(log);
@@ -182,20 +183,24 @@ void writePlots(const BenchSetup& setup, const std::vector<BenchRun>& runs,
 }
 
 int run(int argc, char** argv) {
-  const CommandLine cli(
-      argc, argv,
-      {"suite", "duration", "seed", "modes", "sequences", "runs", "jobs", "config-dir", "out"},
-      {"generate"});
+  const CommandLine cli(argc, argv,
+                        {"suite", "duration", "seed", "profile", "modes", "sequences", "runs",
+                         "jobs", "config-dir", "out"},
+                        {"generate"});
   BenchSetup setup;
   setup.suite_dir = cli.value("suite");
   const fs::path out = cli.value("out");
   const std::string config_dir = cli.valueOr("config-dir", "config");
   setup.modes = cli.has("modes") ? splitList(cli.value("modes")) : kModes;
-  setup.sequences = cli.has("sequences") ? splitList(cli.value("sequences")) : kSequences;
+  const std::string profile = cli.valueOr("profile", "paper");
+  if (profile != "paper" && profile != "hard")
+    throw UsageError("--profile must be paper or hard, not '" + profile + "'");
+  setup.sequences =
+      cli.has("sequences") ? splitList(cli.value("sequences")) : sim::suiteSequences(profile);
   setup.runs = cli.count("runs", 1);
   setup.jobs = cli.count("jobs", 1);
   if (setup.modes.empty() || setup.sequences.empty()) throw UsageError("no mode or no sequence");
-  for (const auto& s : setup.sequences) characters(s);  // names checked before any work
+  for (const auto& s : setup.sequences) checkSequenceName(s);  // before any work
   for (const auto& mode : setup.modes)
     if (!fs::exists(fs::path(config_dir) / (mode + ".ini")))
       throw InputError((fs::path(config_dir) / (mode + ".ini")).string(), "",
@@ -211,6 +216,10 @@ int run(int argc, char** argv) {
         throw InputError((dir / file).string(), "",
                          "missing (generate the suite with --generate or rpvio-sim --suite)");
     gts[s] = readTum((dir / "groundtruth.tum").string());
+    setup.dynamic_fraction[s] =
+        fs::exists(dir / "sequence.json")
+            ? jsonNumber(readText(dir / "sequence.json"), "dynamic_fraction_median")
+            : NAN;
   }
 
   std::vector<BenchRun> runs;

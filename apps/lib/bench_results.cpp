@@ -1,6 +1,7 @@
 #include "apps/lib/bench_results.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <functional>
 #include <sstream>
@@ -79,6 +80,12 @@ std::string resultsMarkdown(const BenchSetup& setup, const std::vector<BenchRun>
                                  [&](const auto& p) { return p.first == s; });
     out << " " << (it == kPaperRpvio.end() ? "-" : number(it->second, 2)) << " |";
   }
+  out << "\n| moving things (median % of the image) |";
+  for (const auto& s : setup.sequences) {
+    const auto it = setup.dynamic_fraction.find(s);
+    const bool known = it != setup.dynamic_fraction.end() && std::isfinite(it->second);
+    out << " " << (known ? number(100 * it->second, 1) : "-") << " |";
+  }
   out << "\n\n## Coverage (% of the sequence with a pose), median\n\n";
   table(out, setup, runs, [&](const std::vector<const BenchRun*>& pair) -> std::string {
     if (pair.empty()) return "-";
@@ -135,7 +142,14 @@ std::string resultsJson(const BenchSetup& setup, const std::vector<BenchRun>& ru
   out << "{\n  \"suite\": " << jsonString(setup.suite_dir)
       << ",\n  \"runs_per_pair\": " << setup.runs << ",\n  \"jobs\": " << setup.jobs
       << ",\n  \"wall_s\": " << setup.wall_s << ",\n  \"min_coverage\": " << setup.min_coverage
-      << ",\n  \"runs\": [";
+      << ",\n  \"dynamic_fraction_median\": {";
+  for (size_t k = 0; k < setup.sequences.size(); ++k) {
+    const auto it = setup.dynamic_fraction.find(setup.sequences[k]);
+    const bool known = it != setup.dynamic_fraction.end() && std::isfinite(it->second);
+    out << (k ? ", " : "") << jsonString(setup.sequences[k]) << ": "
+        << (known ? std::to_string(it->second) : std::string("null"));
+  }
+  out << "},\n  \"runs\": [";
   for (size_t k = 0; k < runs.size(); ++k) {
     const BenchRun& r = runs[k];
     out << (k ? "," : "") << "\n    {\"sequence\": " << jsonString(r.sequence)

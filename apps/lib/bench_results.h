@@ -1,6 +1,7 @@
 #pragma once
 // rpvio-bench's figures: one record per (sequence, mode, run), and the report files made of them
 // (results.md: the paper's Table I layout, modes x sequences; results.json: every figure).
+#include <map>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,9 @@ struct BenchSetup {
   int runs = 1, jobs = 1;
   double min_coverage = 0.9;  // below: tracking lost, "X" in the table
   double wall_s = 0;          // of the whole benchmark
+  /// Per sequence: median fraction of the image moving things cover (its sequence.json; NaN when
+  /// the sequence has none).
+  std::map<std::string, double> dynamic_fraction;
 };
 
 /// A run counts in the ATE table when it was evaluated and covered the sequence.

@@ -9,6 +9,7 @@
 
 #include "apps/lib/command_line.h"
 #include "planes_map/plane_map_exporters.h"
+#include "sim/sequence_name.h"
 #include "sim/sequence_writer.h"
 #include "sim/simulator.h"
 
@@ -18,8 +19,8 @@ namespace rpvio::apps {
 namespace {
 
 const char* kUsage =
-    "usage: rpvio-sim --characters N [--profile paper|hard] [--seed S] [--duration SEC]\n"
-    "                 [--time-offset SEC] [--config INI] --out DIR\n"
+    "usage: rpvio-sim --characters N | --sequence NAME [--profile paper|hard] [--seed S]\n"
+    "                 [--duration SEC] [--time-offset SEC] [--config INI] --out DIR\n"
     "       rpvio-sim --suite [--profile paper|hard] [--seed S] [--duration SEC] [--config INI]\n"
     "                 --out DIR\n"
     "       rpvio-sim --preview [--profile P] [--characters N] [--time SEC] [--config INI]\n"
@@ -29,7 +30,11 @@ const char* kUsage =
     "  schema; moving objects' faces at t = 0 with their motion), DIR/calib.ini,\n"
     "  DIR/dynamic_fraction.csv (per frame: the fraction of the image moving things cover) and\n"
     "  DIR/sequence.json (profile, seed, coverage figures).\n"
-    "  --suite writes DIR/{static,C1,C2,C4,C6,C8}/ with the same seed (CN: N characters).\n"
+    "  --sequence NAME: static, C<N> (N characters), MP (two pallet trucks and two sliding "
+    "panels,\n"
+    "  moving planar objects), MP-C<N> (both). --suite writes DIR/{static,C1,C2,C4,C6,C8}/ with "
+    "the\n"
+    "  same seed, and with --profile hard also DIR/MP/ and DIR/MP-C4/.\n"
     "  --profile: paper (default; the paper's RPVIO-Sim warehouse) or hard (a crowd that fills\n"
     "  the view, CNN-like masks); --config INI overrides keys of the profile (every key:\n"
     "  config/sim/warehouse.ini and docs/configuration.md).\n"
@@ -163,8 +168,8 @@ std::vector<Plane> truePlanes(const sim::WarehouseScene& scene, double duration)
 
 int simMain(int argc, char** argv) {
   return runApp("rpvio-sim", kUsage, [&] {
-    std::set<std::string> options = {"characters", "seed", "duration", "time-offset",
-                                     "config",     "out",  "time",     "profile"};
+    std::set<std::string> options = {"characters", "seed", "duration", "time-offset", "config",
+                                     "out",        "time", "profile",  "sequence"};
     options.insert(kFaultOptions.begin(), kFaultOptions.end());
     const CommandLine cli(argc, argv, options, {"suite", "preview"});
     const std::string out = cli.value("out");
@@ -176,14 +181,22 @@ int simMain(int argc, char** argv) {
       return 0;
     }
     if (cli.has("suite")) {
-      for (int n : {0, 1, 2, 4, 6, 8}) {
-        sim::SimConfig config = loadConfig(cli);
-        config.scene.characters = n;
-        generate(config, (fs::path(out) / (n == 0 ? "static" : "C" + std::to_string(n))).string());
-      }
+      const sim::SimConfig config = loadConfig(cli);
+      for (const std::string& name : sim::suiteSequences(config.profile_name))
+        generate(sim::withSequenceContent(config, *sim::parseSequenceName(name)),
+                 (fs::path(out) / name).string());
       return 0;
     }
-    if (!cli.has("characters")) throw UsageError("missing required option --characters");
+    if (cli.has("sequence")) {
+      const auto content = sim::parseSequenceName(cli.value("sequence"));
+      if (!content || content->characters > 50)
+        throw UsageError("unknown sequence '" + cli.value("sequence") +
+                         "' (static, C<N>, MP or MP-C<N>; N <= 50)");
+      generate(sim::withSequenceContent(loadConfig(cli), *content), out);
+      return 0;
+    }
+    if (!cli.has("characters"))
+      throw UsageError("missing required option --characters (or --sequence, --suite)");
     generate(loadConfig(cli), out);
     return 0;
   });

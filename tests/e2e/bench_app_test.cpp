@@ -33,8 +33,13 @@ TEST(BenchApp, ShortSuiteSideBySide) {
   EXPECT_NE(markdown.find("| rpvio-single |"), std::string::npos) << markdown;
   EXPECT_NE(markdown.find("total median"), std::string::npos) << markdown;
   EXPECT_NE(markdown.find("processing median"), std::string::npos) << markdown;
+  // The sequence's moving-thing coverage from its sequence.json (the paper's C4: about 1 %).
+  EXPECT_NE(markdown.find("| moving things (median % of the image) | "), std::string::npos)
+      << markdown;
 
   const std::string json = test::readFile(dir.file("out/results.json"));
+  const double c4_dynamic = test::jsonNumber(json, "C4");
+  EXPECT_TRUE(c4_dynamic > 0.005 && c4_dynamic < 0.02) << json;
   for (const char* mode : {"vins-mono", "rpvio-single"}) {
     const std::string run = runObject(json, mode);
     ASSERT_FALSE(run.empty()) << mode << " missing in " << json;
@@ -67,6 +72,8 @@ TEST(BenchApp, BadArgumentsExitTwo) {
   EXPECT_EQ(test::runCommand(bench + "--suite x --modes nonsense", output), 2);
   EXPECT_NE(output.find("nonsense.ini"), std::string::npos) << output;
   EXPECT_EQ(test::runCommand(bench + "--suite x --runs 0", output), 2);
+  EXPECT_EQ(test::runCommand(bench + "--suite x --profile easy", output), 2);
+  EXPECT_NE(output.find("--profile"), std::string::npos) << output;
   EXPECT_EQ(test::runCommand(test::binDir() + "/rpvio-bench --help", output), 0);
   EXPECT_EQ(output.rfind("usage: rpvio-bench", 0), 0u) << output;
 }
