@@ -78,12 +78,14 @@ void CapsuleFigure::setParts(std::vector<Capsule> parts, const Eigen::Vector3d& 
 }
 
 std::optional<CharacterHit> CapsuleFigure::intersect(const Eigen::Vector3d& o,
-                                                     const Eigen::Vector3d& d, double t_max) const {
+                                                     const Eigen::Vector3d& d, double t_max,
+                                                     uint64_t parts) const {
   // Bounding spheres first: the figure's, then each part's.
   if (!sphereReachable(bound_centre_, bound_radius_, o, d, t_max)) return std::nullopt;
   int best_part = -1;
   double best_t = t_max;
   for (size_t k = 0; k < parts_.size(); ++k) {
+    if (!(parts >> k & 1)) continue;
     if (!sphereReachable(part_bounds_[k].centre, part_bounds_[k].radius, o, d, best_t)) continue;
     const auto t = intersectCapsule(parts_[k], o, d);
     if (t && *t < best_t) best_t = *t, best_part = static_cast<int>(k);
@@ -92,6 +94,7 @@ std::optional<CharacterHit> CapsuleFigure::intersect(const Eigen::Vector3d& o,
   const Capsule& part = parts_[best_part];
   CharacterHit hit;
   hit.t = best_t;
+  hit.part = best_part;
   hit.point = o + best_t * d;
   const Eigen::Vector3d axis_point = closestOnSegment(part, hit.point);
   hit.normal = (hit.point - axis_point).normalized();
@@ -105,18 +108,26 @@ std::optional<CharacterHit> CapsuleFigure::intersect(const Eigen::Vector3d& o,
   return hit;
 }
 
-Eigen::Vector3d CapsuleFigure::follow(const Eigen::Vector3d& x, const CapsuleFigure& other) const {
-  size_t part = 0;
-  double best = INFINITY;
-  for (size_t k = 0; k < parts_.size(); ++k) {
-    const double off = std::abs((x - closestOnSegment(parts_[k], x)).norm() - parts_[k].radius);
-    if (off < best) best = off, part = k;
-  }
+Eigen::Vector3d CapsuleFigure::follow(const Eigen::Vector3d& x, int part,
+                                      const CapsuleFigure& other) const {
   const Capsule &now = parts_[part], &then = other.parts_[part];
   const Eigen::Vector3d ab = now.b - now.a, ab_then = then.b - then.a;
   const double s = std::clamp((x - now.a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
   const Eigen::Vector3d radial = x - (now.a + s * ab);
   return then.a + s * ab_then + Eigen::Quaterniond::FromTwoVectors(ab, ab_then) * radial;
+}
+
+uint64_t CapsuleFigure::partsInPyramid(const Eigen::Vector3d& origin,
+                                       const std::array<Eigen::Vector3d, 4>& side_normals) const {
+  uint64_t inside = 0;
+  for (size_t k = 0; k < part_bounds_.size(); ++k) {
+    const Eigen::Vector3d c = part_bounds_[k].centre - origin;
+    const double r = part_bounds_[k].radius * (1 + 1e-6) + 1e-9;
+    if (std::none_of(side_normals.begin(), side_normals.end(),
+                     [&](const Eigen::Vector3d& n) { return n.dot(c) < -r; }))
+      inside |= 1ULL << k;
+  }
+  return inside;
 }
 
 double CapsuleFigure::signedDistance(const Eigen::Vector3d& x) const {

@@ -2,6 +2,8 @@
 // A figure made of capsules (a person's head, torso and limbs): ray intersection, distance, and a
 // clothes pattern that moves with the limbs. The characters of both suites are such figures.
 #include <Eigen/Core>
+#include <array>
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -17,6 +19,7 @@ struct CharacterHit {
   Eigen::Vector3d point;  // world
   Eigen::Vector3d normal;
   float albedo;  // 0..255 intensity of the clothes/skin pattern at the point
+  int part;      // index of the capsule hit
 };
 
 class CapsuleFigure {
@@ -25,14 +28,22 @@ class CapsuleFigure {
   /// limb.
   void setParts(std::vector<Capsule> parts, const Eigen::Vector3d& bound_centre, double cell_size,
                 int seed);
+  /// `parts`: bit k set = part k may be hit (a tile's culling, partsInPyramid); all by default.
   std::optional<CharacterHit> intersect(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir,
-                                        double t_max) const;
+                                        double t_max, uint64_t parts = ~0ULL) const;
+  /// Bit k set unless part k lies entirely outside one of the pyramid's sides (inward unit
+  /// normals through `origin`).
+  uint64_t partsInPyramid(const Eigen::Vector3d& origin,
+                          const std::array<Eigen::Vector3d, 4>& side_normals) const;
   /// Distance from a world point to the figure's surface (negative inside).
   double signedDistance(const Eigen::Vector3d& x) const;
-  /// Where the surface point x of this figure is on `other` (the same figure in another pose): same
-  /// part, same place along it, radial offset turned with the part's axis.
-  Eigen::Vector3d follow(const Eigen::Vector3d& x, const CapsuleFigure& other) const;
+  /// Where the surface point x of this figure's part `part` is on `other` (the same figure in
+  /// another pose): same place along the part, radial offset turned with the part's axis.
+  Eigen::Vector3d follow(const Eigen::Vector3d& x, int part, const CapsuleFigure& other) const;
   const std::vector<Capsule>& parts() const { return parts_; }
+  /// A sphere around the whole figure.
+  const Eigen::Vector3d& boundCentre() const { return bound_centre_; }
+  double boundRadius() const { return bound_radius_; }
 
  private:
   std::vector<Capsule> parts_;

@@ -54,9 +54,10 @@ void Character::pose(double t) {
 }
 
 std::optional<CharacterHit> Character::intersect(const Eigen::Vector3d& origin,
-                                                 const Eigen::Vector3d& dir, double t_max) const {
+                                                 const Eigen::Vector3d& dir, double t_max,
+                                                 uint64_t parts) const {
   if (!on_stage_) return std::nullopt;
-  return figure_.intersect(origin, dir, t_max);
+  return figure_.intersect(origin, dir, t_max, parts);
 }
 
 double Character::signedDistance(const Eigen::Vector3d& x) const {

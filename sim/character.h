@@ -22,7 +22,7 @@ class Character {
   /// Off stage (a walker between its appearances): never hit, infinitely far.
   bool onStage() const { return on_stage_; }
   std::optional<CharacterHit> intersect(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir,
-                                        double t_max) const;
+                                        double t_max, uint64_t parts = ~0ULL) const;
   double signedDistance(const Eigen::Vector3d& x) const;
   const CapsuleFigure& figure() const { return figure_; }
 

@@ -72,8 +72,9 @@ cv::Mat motionBlur(const SceneRadiance& sharp, const WarehouseScene& scene,
         Xc_close = C_close * (object_close[mover - kMoverObjectBase] * X);
       } else if (mover >= 0) {  // a character's point moves with its limb
         const Eigen::Vector3d X = T_WC * Xc;
-        Xc_open = C_open * now[mover].figure().follow(X, open[mover].figure());
-        Xc_close = C_close * now[mover].figure().follow(X, close[mover].figure());
+        const int part = sharp.part.at<int8_t>(r, c);
+        Xc_open = C_open * now[mover].figure().follow(X, part, open[mover].figure());
+        Xc_close = C_close * now[mover].figure().follow(X, part, close[mover].figure());
       }
       Eigen::Vector2d p_open, p_close;
       if (!project(Xc_open, p_open) || !project(Xc_close, p_close)) {

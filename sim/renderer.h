@@ -39,6 +39,7 @@ struct SceneRadiance {
   cv::Mat depth;     // CV_32F, camera-z depth of the point at the pixel centre (0: nothing hit)
   cv::Mat mover;     // CV_16S, what moving thing the pixel centre sees: character k as k, moving
                      // object j as kMoverObjectBase + j, -1 nothing that moves
+  cv::Mat part;      // CV_8S, the character's part there (-1: none)
 };
 
 /// The scene as posed (WarehouseScene::setTime) seen from camera pose T_WC (camera in world).

@@ -1,6 +1,7 @@
 #include "sim/warehouse_scene.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <stdexcept>
@@ -144,7 +145,41 @@ WarehouseScene::PlanesInView WarehouseScene::planesInView(const Eigen::Vector3d&
     const double numerator = p.normal.dot(p.origin - origin);
     if (numerator < 0) view.planes.emplace_back(&p, numerator);
   }
+  for (size_t k = 0; k < characters_.size(); ++k)
+    if (characters_[k].onStage()) view.characters.emplace_back(k, ~0ULL);
   return view;
+}
+
+WarehouseScene::PlanesInView WarehouseScene::cullToPyramid(
+    const PlanesInView& view, const std::array<Eigen::Vector3d, 4>& directions) const {
+  // Inward normals of the pyramid's sides: a point X is outside side i when n_i·(X − o) < 0.
+  const Eigen::Vector3d middle = directions[0] + directions[1] + directions[2] + directions[3];
+  std::array<Eigen::Vector3d, 4> sides;
+  for (int i = 0; i < 4; ++i) {
+    sides[i] = directions[i].cross(directions[(i + 1) % 4]).normalized();
+    if (sides[i].dot(middle) < 0) sides[i] = -sides[i];
+  }
+  const Eigen::Vector3d& o = view.origin;
+  PlanesInView culled;
+  culled.origin = o;
+  for (const auto& entry : view.planes) {
+    const ScenePlane& p = *entry.first;
+    const Eigen::Vector3d u = p.width * p.u_axis, v = p.height * p.v_axis;
+    const Eigen::Vector3d corners[4] = {p.origin - o, p.origin + u - o, p.origin + u + v - o,
+                                        p.origin + v - o};
+    bool outside = false;
+    for (const Eigen::Vector3d& n : sides) {
+      outside = std::all_of(std::begin(corners), std::end(corners),
+                            [&](const Eigen::Vector3d& x) { return n.dot(x) < -1e-9; });
+      if (outside) break;
+    }
+    if (!outside) culled.planes.push_back(entry);
+  }
+  for (const auto& [k, parts] : view.characters) {
+    const uint64_t inside = parts & characters_[k].figure().partsInPyramid(o, sides);
+    if (inside) culled.characters.emplace_back(k, inside);
+  }
+  return culled;
 }
 
 SceneHit WarehouseScene::cast(const PlanesInView& view, const Eigen::Vector3d& d,
@@ -170,12 +205,13 @@ SceneHit WarehouseScene::cast(const PlanesInView& view, const Eigen::Vector3d& d
       best = nullptr;
     }
   }
-  for (size_t k = 0; k < characters_.size(); ++k) {
-    if (auto c = characters_[k].intersect(o, d, hit.t)) {
+  for (const auto& [k, parts] : view.characters) {
+    if (auto c = characters_[k].intersect(o, d, hit.t, parts)) {
       hit.t = c->t;
       hit.point = c->point;
       hit.label = kMaskCharacter;
       hit.character = static_cast<int>(k);
+      hit.part = c->part;
       hit.moving_object = -1;
       hit.dynamic = true;
       hit.intensity =

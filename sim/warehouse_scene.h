@@ -13,6 +13,7 @@
 // Mask labels: plane id on static planes and on moving faces (as a CNN labels them; the renderer's
 // `dynamic` image tells them apart), 0 on characters, 255 where the ray hits nothing.
 #include <Eigen/Core>
+#include <array>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -60,6 +61,7 @@ struct SceneHit {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   int label = kMaskNothing;  // plane id, kMaskCharacter or kMaskNothing
   int character = -1;        // index of the character hit, if any
+  int part = -1;             // and of its part
   int moving_object = -1;    // index of the moving planar object hit, if any
   bool dynamic = false;      // a moving thing (character or moving planar object)
   float intensity = 0;       // shaded surface intensity 0..255
@@ -77,8 +79,14 @@ class WarehouseScene {
   struct PlanesInView {
     Eigen::Vector3d origin = Eigen::Vector3d::Zero();
     std::vector<std::pair<const ScenePlane*, double>> planes;
+    std::vector<std::pair<size_t, uint64_t>> characters;  // those on stage, which of their parts
   };
   PlanesInView planesInView(const Eigen::Vector3d& origin) const;
+  /// The part of `view` that rays inside the pyramid of the four directions (in order around it)
+  /// can hit: planes and characters entirely outside one of its sides are left out. Casting with
+  /// it gives the same hits as with `view` for those rays, at a fraction of the cost.
+  PlanesInView cullToPyramid(const PlanesInView& view,
+                             const std::array<Eigen::Vector3d, 4>& directions) const;
   /// First surface along origin + t·dir (t > 0). `footprint_per_t`: pixel footprint (m) per unit t,
   /// for texture filtering.
   SceneHit cast(const PlanesInView& view, const Eigen::Vector3d& dir, double footprint_per_t) const;
