@@ -4,6 +4,7 @@
 
 #include "sim/flight_trajectory.h"
 #include "sim/imu_simulator.h"
+#include "sim/sim_config.h"
 
 namespace rpvio::sim {
 namespace {
@@ -34,8 +35,14 @@ TEST(Flight, PaperNumbers) {
   EXPECT_GT(flight.at(0).a.z(), 1.0);              // with a vertical push
 }
 
-TEST(Flight, DerivativesMatchFiniteDifferences) {
-  const FlightTrajectory flight{FlightParams{}};
+/// The flights of both profiles (the hard one flies lower, with a smaller push and wave).
+class BothProfiles : public ::testing::TestWithParam<const char*> {
+ protected:
+  FlightTrajectory flight{SimConfig::profile(GetParam()).flight};
+};
+INSTANTIATE_TEST_SUITE_P(Profiles, BothProfiles, ::testing::Values("paper", "hard"));
+
+TEST_P(BothProfiles, FlightDerivativesMatchFiniteDifferences) {
   const double h = 1e-5;
   for (double t : {0.3, 7.0, 33.3, 79.0}) {
     const FlightState s = flight.at(t), a = flight.at(t - h), b = flight.at(t + h);
@@ -46,8 +53,7 @@ TEST(Flight, DerivativesMatchFiniteDifferences) {
   }
 }
 
-TEST(Imu, NoiseFreeIntegrationReproducesGroundTruth) {
-  const FlightTrajectory flight{FlightParams{}};
+TEST_P(BothProfiles, NoiseFreeImuIntegrationReproducesGroundTruth) {
   ImuNoise noise;
   const auto imu = simulateImu(flight, noise, {}, 10.0, false, 1);
   const Eigen::Vector3d g(0, 0, -noise.gravity);
