@@ -108,13 +108,20 @@ std::optional<CharacterHit> CapsuleFigure::intersect(const Eigen::Vector3d& o,
   return hit;
 }
 
-Eigen::Vector3d CapsuleFigure::follow(const Eigen::Vector3d& x, int part,
-                                      const CapsuleFigure& other) const {
-  const Capsule &now = parts_[part], &then = other.parts_[part];
-  const Eigen::Vector3d ab = now.b - now.a, ab_then = then.b - then.a;
-  const double s = std::clamp((x - now.a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-  const Eigen::Vector3d radial = x - (now.a + s * ab);
-  return then.a + s * ab_then + Eigen::Quaterniond::FromTwoVectors(ab, ab_then) * radial;
+Eigen::Vector3d PartMotion::apply(const Eigen::Vector3d& x) const {
+  const double s = std::clamp((x - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  const Eigen::Vector3d radial = x - (a + s * ab);
+  return a_then + s * ab_then + turn * radial;
+}
+
+std::vector<PartMotion> CapsuleFigure::motionTo(const CapsuleFigure& other) const {
+  std::vector<PartMotion> motion;
+  for (size_t k = 0; k < parts_.size(); ++k) {
+    const Capsule &now = parts_[k], &then = other.parts_[k];
+    const Eigen::Vector3d ab = now.b - now.a, ab_then = then.b - then.a;
+    motion.push_back({now.a, ab, then.a, ab_then, Eigen::Quaterniond::FromTwoVectors(ab, ab_then)});
+  }
+  return motion;
 }
 
 uint64_t CapsuleFigure::partsInPyramid(const Eigen::Vector3d& origin,

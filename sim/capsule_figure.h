@@ -2,6 +2,7 @@
 // A figure made of capsules (a person's head, torso and limbs): ray intersection, distance, and a
 // clothes pattern that moves with the limbs. The characters of both suites are such figures.
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -22,6 +23,16 @@ struct CharacterHit {
   int part;      // index of the capsule hit
 };
 
+/// How one part moves between two poses of a figure: a surface point keeps its place along the
+/// part, and its radial offset turns with the part's axis.
+struct PartMotion {
+  Eigen::Vector3d a, ab;            // the part's axis in the first pose
+  Eigen::Vector3d a_then, ab_then;  // and in the other
+  Eigen::Quaterniond turn;          // ab → ab_then (shortest arc)
+  /// Where the surface point x of the first pose is in the other.
+  Eigen::Vector3d apply(const Eigen::Vector3d& x) const;
+};
+
 class CapsuleFigure {
  public:
   /// `parts[0]` is the head (skin tone); `cell_size` (m) is the clothes pattern's cell along a
@@ -37,9 +48,8 @@ class CapsuleFigure {
                           const std::array<Eigen::Vector3d, 4>& side_normals) const;
   /// Distance from a world point to the figure's surface (negative inside).
   double signedDistance(const Eigen::Vector3d& x) const;
-  /// Where the surface point x of this figure's part `part` is on `other` (the same figure in
-  /// another pose): same place along the part, radial offset turned with the part's axis.
-  Eigen::Vector3d follow(const Eigen::Vector3d& x, int part, const CapsuleFigure& other) const;
+  /// How each part moves from this pose to `other` (the same figure in another pose).
+  std::vector<PartMotion> motionTo(const CapsuleFigure& other) const;
   const std::vector<Capsule>& parts() const { return parts_; }
   /// A sphere around the whole figure.
   const Eigen::Vector3d& boundCentre() const { return bound_centre_; }

@@ -9,10 +9,15 @@
 namespace rpvio::sim {
 namespace {
 
-std::vector<Character> posedAt(const std::vector<Character>& characters, double t) {
-  std::vector<Character> posed = characters;
-  for (Character& c : posed) c.pose(t);
-  return posed;
+/// How every part of every character moves from its pose now to its pose at t.
+std::vector<std::vector<PartMotion>> partMotion(const std::vector<Character>& now, double t) {
+  std::vector<std::vector<PartMotion>> motion;
+  for (const Character& c : now) {
+    Character then = c;
+    then.pose(t);
+    motion.push_back(c.figure().motionTo(then.figure()));
+  }
+  return motion;
 }
 
 /// T_WO(t_other) T_WO(t)⁻¹ of every moving object: where its points go.
@@ -42,9 +47,8 @@ float bilinear(const cv::Mat& image, double x, double y) {
 cv::Mat motionBlur(const SceneRadiance& sharp, const WarehouseScene& scene,
                    const PinholeCamera& cam, const Eigen::Isometry3d& T_WC,
                    const ShutterInterval& shutter, int threads) {
-  const std::vector<Character>& now = scene.characters();
-  const std::vector<Character> open = posedAt(now, shutter.t_open);
-  const std::vector<Character> close = posedAt(now, shutter.t_close);
+  const auto character_open = partMotion(scene.characters(), shutter.t_open);
+  const auto character_close = partMotion(scene.characters(), shutter.t_close);
   const double t = 0.5 * (shutter.t_open + shutter.t_close);
   const auto object_open = objectMotion(scene.movingObjects(), t, shutter.t_open);
   const auto object_close = objectMotion(scene.movingObjects(), t, shutter.t_close);
@@ -73,8 +77,8 @@ cv::Mat motionBlur(const SceneRadiance& sharp, const WarehouseScene& scene,
       } else if (mover >= 0) {  // a character's point moves with its limb
         const Eigen::Vector3d X = T_WC * Xc;
         const int part = sharp.part.at<int8_t>(r, c);
-        Xc_open = C_open * now[mover].figure().follow(X, part, open[mover].figure());
-        Xc_close = C_close * now[mover].figure().follow(X, part, close[mover].figure());
+        Xc_open = C_open * character_open[mover][part].apply(X);
+        Xc_close = C_close * character_close[mover][part].apply(X);
       }
       Eigen::Vector2d p_open, p_close;
       if (!project(Xc_open, p_open) || !project(Xc_close, p_close)) {

@@ -3,8 +3,10 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <future>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 
 #include "common/atomic_file.h"
 #include "common/json_text.h"
@@ -61,27 +63,47 @@ SequenceStats writeSequence(const SimConfig& config, const std::string& out_dir,
   const std::string rawlog = (fs::path(out_dir) / "seq.rawlog").string();
   RawlogWriter writer(rawlog, sim.calibration());
   Trajectory groundtruth;
+  // Frame k is encoded and written (PNG compression, the rawlog) on a second thread while frame
+  // k+1 renders; the rawlog's order is the loop's, as each write waits for the previous one.
+  std::future<void> writing;
+  auto finishWriting = [&] {
+    if (writing.valid()) writing.get();  // rethrows the writer's exception
+  };
   size_t i_imu = 0;
   for (size_t k = 0; k <= frame_times.size(); ++k) {
     // Camera stamps are t_cam = τ − time_offset; IMU and ground truth up to that stamp go first.
     const bool has_frame = k < frame_times.size();
     const double stamp = has_frame ? frame_times[k] - config.time_offset : INFINITY;
+    std::vector<std::pair<std::optional<ImuSample>, StampedPose>> imu_batch;
     for (; i_imu < imu.size() && imu[i_imu].t <= stamp; ++i_imu) {
-      if (!config.faults.dropsImu(imu[i_imu].t)) writer.addImu(config.faults.saturate(imu[i_imu]));
       groundtruth.push_back(stampedPose(sim, imu[i_imu].t));
-      writer.addGroundTruth(groundtruth.back());
+      imu_batch.emplace_back(std::nullopt, groundtruth.back());
+      if (!config.faults.dropsImu(imu[i_imu].t))
+        imu_batch.back().first = config.faults.saturate(imu[i_imu]);
     }
-    if (!has_frame || stamp < 0) continue;
-    if (config.faults.dropsFrame(frame_times[k], 1.0 / config.camera_rate)) continue;
-    RenderedFrame frame = sim.render(frame_times[k], static_cast<int>(k));
-    config.faults.applyToFrame(frame_times[k], frame.image, frame.mask);
-    writer.addImage(stamp, frame.image);
-    writer.addMask(stamp, frame.mask);
-    stats.dynamic_coverage.push_back(
-        {stamp, cv::countNonZero(frame.dynamic) / static_cast<double>(frame.dynamic.total())});
-    ++stats.frames;
-    if (progress) progress(stats.frames, frame_times.size());
+    std::optional<RenderedFrame> frame;
+    if (has_frame && stamp >= 0 &&
+        !config.faults.dropsFrame(frame_times[k], 1.0 / config.camera_rate)) {
+      frame = sim.render(frame_times[k], static_cast<int>(k));
+      config.faults.applyToFrame(frame_times[k], frame->image, frame->mask);
+      ++stats.frames;
+    }
+    finishWriting();
+    writing = std::async(std::launch::async, [&, imu_batch = std::move(imu_batch),
+                                              frame = std::move(frame), stamp] {
+      for (const auto& [sample, pose] : imu_batch) {
+        if (sample) writer.addImu(*sample);
+        writer.addGroundTruth(pose);
+      }
+      if (!frame) return;
+      writer.addImage(stamp, frame->image);
+      writer.addMask(stamp, frame->mask);
+      stats.dynamic_coverage.push_back(
+          {stamp, cv::countNonZero(frame->dynamic) / static_cast<double>(frame->dynamic.total())});
+      if (progress) progress(stats.dynamic_coverage.size(), frame_times.size());
+    });
   }
+  finishWriting();
   for (size_t i = 1; i < groundtruth.size(); ++i)
     stats.path_length += (groundtruth[i].p - groundtruth[i - 1].p).norm();
   for (const auto& s : imu) stats.max_speed = std::max(stats.max_speed, sim.state(s.t).v.norm());

@@ -226,9 +226,11 @@ TEST(SlamApp, AnOutputThatCannotBeWrittenIsBadInputAndNothingIsHalfWritten) {
   const std::string summary = test::readFile(dir.file("o/summary.json"));
   EXPECT_EQ(summary.back(), '\n');  // written whole, before the failing writer
   EXPECT_NE(summary.find("\"status\": "), std::string::npos);
-  for (const auto& entry : std::filesystem::directory_iterator(dir.file("o")))
-    if (entry.path().extension() == ".tmp")
+  for (const auto& entry : std::filesystem::directory_iterator(dir.file("o"))) {
+    if (entry.path().extension() == ".tmp") {
       EXPECT_TRUE(entry.is_directory()) << entry.path();  // only the folder put there
+    }
+  }
 }
 
 TEST(SlamApp, AnOutputPathThatCannotBeAFolderIsBadInput) {
