@@ -229,13 +229,24 @@ void writePlanesTopView(const std::string& png_path, const std::vector<Plane>& p
                      size - margin - static_cast<int>((p.y() - y0) * scale));
   };
   cv::Mat img(size, size, CV_8UC3, cv::Scalar(255, 255, 255));
-  // Bottom up (mean height), so crate tops cover the floor; planes facing down (ceilings) are
-  // outlines only, so they hide nothing below them.
+  // Bottom up (mean height), so crate tops cover the floor; ceilings (horizontal planes above the
+  // camera's mean height, or above the middle of the map's heights without a trajectory) are
+  // outlines only, so they hide nothing below them. The normal's sign says nothing: an estimate's
+  // n·X = d may face either way.
   auto height = [](const Plane* p) {
     double z = 0;
     for (const auto& v : p->polygon) z += v.z();
     return p->polygon.empty() ? 0.0 : z / p->polygon.size();
   };
+  double ceiling_above = 0;
+  if (!trajectory.empty()) {
+    for (const auto& s : trajectory) ceiling_above += s.p.z() / trajectory.size();
+  } else {
+    double z0 = 1e18, z1 = -1e18;
+    for (const Plane& p : planes)
+      for (const auto& v : p.polygon) z0 = std::min(z0, v.z()), z1 = std::max(z1, v.z());
+    ceiling_above = z0 <= z1 ? 0.5 * (z0 + z1) : 0.0;
+  }
   std::vector<const Plane*> order;
   for (const Plane& p : planes) order.push_back(&p);
   std::stable_sort(order.begin(), order.end(),
@@ -245,7 +256,7 @@ void writePlanesTopView(const std::string& png_path, const std::vector<Plane>& p
     std::vector<cv::Point> poly;
     for (const auto& v : p->polygon) poly.push_back(px(v));
     const auto c = planeColour(p->id);
-    const bool ceiling = p->normal.z() < -0.9;
+    const bool ceiling = std::abs(p->normal.z()) > 0.9 && height(p) > ceiling_above;
     if (!ceiling) cv::fillConvexPoly(img, poly, cv::Scalar(c[2], c[1], c[0]), cv::LINE_AA);
     cv::polylines(img, poly, true, ceiling ? cv::Scalar(c[2], c[1], c[0]) : cv::Scalar(60, 60, 60),
                   ceiling ? 2 : 1, cv::LINE_AA);
