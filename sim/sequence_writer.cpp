@@ -133,10 +133,10 @@ SequenceStats writeSequence(const SimConfig& config, const std::string& out_dir,
   writeFileAtomically((fs::path(out_dir) / "sequence.json").string(), [&](std::ostream& out) {
     out << JsonObject()
                .text("profile", config.profile_name)
-               .number("seed", static_cast<double>(config.seed))
-               .number("characters", config.scene.characters)
+               .integer("seed", static_cast<long long>(config.seed))
+               .integer("characters", config.scene.characters)
                .number("duration_s", config.duration)
-               .number("frames", static_cast<double>(stats.frames))
+               .integer("frames", static_cast<long long>(stats.frames))
                .number("path_length_m", stats.path_length)
                .number("dynamic_fraction_mean", stats.coverage.mean)
                .number("dynamic_fraction_median", stats.coverage.median)

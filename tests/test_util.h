@@ -11,6 +11,8 @@
 #include <limits>
 #include <string>
 
+#include "common/json_text.h"
+
 namespace rpvio::test {
 
 /// A fresh directory under the system temp folder, removed when the object goes out of scope.
@@ -51,11 +53,7 @@ inline int runCommand(const std::string& command, std::string& output) {
 
 /// The number after the first `"key":` in a JSON text (NaN when absent): enough to check the
 /// apps' flat JSON outputs without a JSON library.
-inline double jsonNumber(const std::string& json, const std::string& key) {
-  const auto at = json.find("\"" + key + "\":");
-  if (at == std::string::npos) return std::numeric_limits<double>::quiet_NaN();
-  return std::strtod(json.c_str() + at + key.size() + 3, nullptr);
-}
+using ::rpvio::jsonNumber;
 
 inline std::string readFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

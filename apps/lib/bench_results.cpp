@@ -137,43 +137,50 @@ std::string resultsMarkdown(const BenchSetup& setup, const std::vector<BenchRun>
 }
 
 std::string resultsJson(const BenchSetup& setup, const std::vector<BenchRun>& runs) {
-  std::ostringstream out;
-  out.precision(10);
-  out << "{\n  \"suite\": " << jsonString(setup.suite_dir)
-      << ",\n  \"runs_per_pair\": " << setup.runs << ",\n  \"jobs\": " << setup.jobs
-      << ",\n  \"wall_s\": " << setup.wall_s << ",\n  \"min_coverage\": " << setup.min_coverage
-      << ",\n  \"dynamic_fraction_median\": {";
-  for (size_t k = 0; k < setup.sequences.size(); ++k) {
-    const auto it = setup.dynamic_fraction.find(setup.sequences[k]);
-    const bool known = it != setup.dynamic_fraction.end() && std::isfinite(it->second);
-    out << (k ? ", " : "") << jsonString(setup.sequences[k]) << ": "
-        << (known ? std::to_string(it->second) : std::string("null"));
+  constexpr int kDigits = 10;
+  JsonObject dynamic_fraction(kDigits);
+  for (const std::string& sequence : setup.sequences) {
+    const auto it = setup.dynamic_fraction.find(sequence);
+    dynamic_fraction.number(sequence, it != setup.dynamic_fraction.end() ? it->second : NAN);
   }
-  out << "},\n  \"runs\": [";
-  for (size_t k = 0; k < runs.size(); ++k) {
-    const BenchRun& r = runs[k];
-    out << (k ? "," : "") << "\n    {\"sequence\": " << jsonString(r.sequence)
-        << ", \"mode\": " << jsonString(r.mode) << ", \"run\": " << r.run
-        << ", \"dir\": " << jsonString(r.dir) << ", \"exit_code\": " << r.exit_code
-        << ", \"evaluated\": " << (r.evaluated ? "true" : "false")
-        << ", \"tracked\": " << (tracked(r, setup) ? "true" : "false")
-        << ", \"error\": " << jsonString(r.error) << ", \"ate_rmse\": " << r.ate_rmse
-        << ", \"ate_rotation_deg\": " << r.ate_rotation_deg << ", \"coverage\": " << r.coverage
-        << ", \"refined_ate_rmse\": " << r.refined_ate_rmse
-        << ", \"initialized_at\": " << r.initialized_at << ", \"resets\": " << r.resets
-        << ", \"frontend_ms_median\": " << r.frontend_ms_median
-        << ", \"frontend_ms_p95\": " << r.frontend_ms_p95
-        << ", \"optimization_ms_median\": " << r.optimization_ms_median
-        << ", \"optimization_ms_p95\": " << r.optimization_ms_p95
-        << ", \"total_ms_median\": " << r.total_ms_median
-        << ", \"total_ms_p95\": " << r.total_ms_p95 << ", \"load_ms_median\": " << r.load_ms_median
-        << ", \"processing_ms_median\": " << r.processing_ms_median
-        << ", \"processing_ms_p95\": " << r.processing_ms_p95
-        << ", \"real_time_factor\": " << r.real_time_factor
-        << ", \"peak_memory_mb\": " << r.peak_memory_mb << ", \"wall_s\": " << r.wall_s << "}";
-  }
-  out << "\n  ]\n}\n";
-  return out.str();
+  std::vector<JsonObject> run_objects;
+  for (const BenchRun& r : runs)
+    run_objects.push_back(JsonObject(kDigits)
+                              .text("sequence", r.sequence)
+                              .text("mode", r.mode)
+                              .integer("run", r.run)
+                              .text("dir", r.dir)
+                              .integer("exit_code", r.exit_code)
+                              .flag("evaluated", r.evaluated)
+                              .flag("tracked", tracked(r, setup))
+                              .text("error", r.error)
+                              .number("ate_rmse", r.ate_rmse)
+                              .number("ate_rotation_deg", r.ate_rotation_deg)
+                              .number("coverage", r.coverage)
+                              .number("refined_ate_rmse", r.refined_ate_rmse)
+                              .number("initialized_at", r.initialized_at)
+                              .integer("resets", r.resets)
+                              .number("frontend_ms_median", r.frontend_ms_median)
+                              .number("frontend_ms_p95", r.frontend_ms_p95)
+                              .number("optimization_ms_median", r.optimization_ms_median)
+                              .number("optimization_ms_p95", r.optimization_ms_p95)
+                              .number("total_ms_median", r.total_ms_median)
+                              .number("total_ms_p95", r.total_ms_p95)
+                              .number("load_ms_median", r.load_ms_median)
+                              .number("processing_ms_median", r.processing_ms_median)
+                              .number("processing_ms_p95", r.processing_ms_p95)
+                              .number("real_time_factor", r.real_time_factor)
+                              .number("peak_memory_mb", r.peak_memory_mb)
+                              .number("wall_s", r.wall_s));
+  return JsonObject(kDigits)
+      .text("suite", setup.suite_dir)
+      .integer("runs_per_pair", setup.runs)
+      .integer("jobs", setup.jobs)
+      .number("wall_s", setup.wall_s)
+      .number("min_coverage", setup.min_coverage)
+      .object("dynamic_fraction_median", dynamic_fraction)
+      .objects("runs", run_objects)
+      .str();
 }
 
 }  // namespace rpvio::apps

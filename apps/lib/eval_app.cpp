@@ -61,71 +61,90 @@ std::map<int, eval::LabelVisibility> planeVisibleSeconds(const EvalAppOptions& o
   return visibility.seconds();
 }
 
-std::string statsJson(const eval::ErrorStats& s) {
-  char buf[320];
-  std::snprintf(buf, sizeof(buf),
-                "{\"rmse\": %.17g, \"mean\": %.17g, \"median\": %.17g, \"std\": %.17g, "
-                "\"min\": %.17g, \"max\": %.17g, \"count\": %zu}",
-                s.rmse, s.mean, s.median, s.std, s.min, s.max, s.count);
-  return buf;
+constexpr int kExactDigits = 17;  // a double's value exactly
+
+JsonObject statsJson(const eval::ErrorStats& s) {
+  return JsonObject(kExactDigits)
+      .number("rmse", s.rmse)
+      .number("mean", s.mean)
+      .number("median", s.median)
+      .number("std", s.std)
+      .number("min", s.min)
+      .number("max", s.max)
+      .integer("count", static_cast<long long>(s.count));
+}
+
+JsonObject estimateJson(const EvalAppOptions& opt, const std::string& label,
+                        const std::string& file, const eval::EvalResult& r) {
+  auto rpe = [](const char* delta_key, double delta, const eval::RelativeError& e) {
+    return JsonObject()
+        .number(delta_key, delta)
+        .object("translation", statsJson(e.translation))
+        .object("rotation_deg", statsJson(e.rotation_deg));
+  };
+  const auto& a = r.alignment;
+  return JsonObject()
+      .text("label", label)
+      .text("file", file)
+      .integer("pairs", static_cast<long long>(r.pairs.size()))
+      .number("coverage", r.coverage)
+      .object("ate", statsJson(r.ate))
+      .number("ate_rotation_rmse_deg", r.ate_rotation_rmse_deg)
+      .object("rpe_distance", rpe("delta_m", opt.eval.rpe_distance, r.rpe_distance))
+      .object("rpe_frames", rpe("delta_frames", opt.eval.rpe_frames, r.rpe_frames))
+      .object(
+          "alignment",
+          JsonObject().number("scale", a.s).numbers("translation", {a.t.x(), a.t.y(), a.t.z()}));
+}
+
+JsonObject planeMapJson(const EvalAppOptions& opt, const EvalAppResult& res) {
+  const auto& m = *res.plane_map;
+  std::vector<JsonObject> planes;
+  for (const auto& p : m.planes)
+    planes.push_back(JsonObject()
+                         .integer("id", p.true_id)
+                         .integer("map_entries", static_cast<long long>(p.map_entries))
+                         .number("normal_error_deg", p.normal_error_deg)
+                         .number("distance_error_m", p.distance_error_m)
+                         .number("seen_s", p.seen_s)
+                         .number("normal_sigma_deg", p.normal_sigma_deg)
+                         .number("distance_sigma_m", p.distance_sigma_m));
+  JsonObject json;
+  json.text("file", opt.planes_file)
+      .integer("map_planes", static_cast<long long>(m.map_planes))
+      .integer("true_planes", static_cast<long long>(m.planes.size()))
+      .integer("duplicates", static_cast<long long>(m.duplicates))
+      .integer("mixed", static_cast<long long>(m.mixed))
+      .integer("unmatched", static_cast<long long>(m.unmatched))
+      .integer("on_moving", static_cast<long long>(m.on_moving))
+      .objects("planes", planes);
+  if (res.visible_s) {
+    const auto& missing = res.missing_planes;
+    for (const auto& [name, list] :
+         {std::pair{"missing", &missing.missing}, std::pair{"untrackable", &missing.untrackable}}) {
+      std::vector<JsonObject> entries;
+      for (const auto& plane : *list)
+        entries.push_back(JsonObject()
+                              .integer("id", plane.true_id)
+                              .number("seen_s", plane.visible.seen_s)
+                              .number("trackable_s", plane.visible.trackable_s));
+      json.objects(name, entries);
+    }
+  }
+  return json;
 }
 
 void writeJson(const EvalAppOptions& opt, const EvalAppResult& res) {
-  writeFileAtomically(opt.json_file, [&](std::ostream& out) {
-    out << "{\n  \"ground_truth\": " << jsonString(opt.gt_file) << ",\n  \"alignment\": \""
-        << eval::toString(opt.eval.align) << "\",\n  \"max_dt\": " << opt.eval.max_dt
-        << ",\n  \"estimates\": [\n";
-    for (size_t k = 0; k < res.results.size(); ++k) {
-      const auto& r = res.results[k];
-      const auto& a = r.alignment;
-      out << "    {\"label\": " << jsonString(res.labels[k])
-          << ", \"file\": " << jsonString(opt.est_files[k]) << ", \"pairs\": " << r.pairs.size()
-          << ", \"coverage\": " << r.coverage << ",\n     \"ate\": " << statsJson(r.ate)
-          << ",\n     \"ate_rotation_rmse_deg\": " << r.ate_rotation_rmse_deg
-          << ",\n     \"rpe_distance\": {\"delta_m\": " << opt.eval.rpe_distance
-          << ", \"translation\": " << statsJson(r.rpe_distance.translation)
-          << ", \"rotation_deg\": " << statsJson(r.rpe_distance.rotation_deg) << "}"
-          << ",\n     \"rpe_frames\": {\"delta_frames\": " << opt.eval.rpe_frames
-          << ", \"translation\": " << statsJson(r.rpe_frames.translation)
-          << ", \"rotation_deg\": " << statsJson(r.rpe_frames.rotation_deg) << "}"
-          << ",\n     \"alignment\": {\"scale\": " << a.s << ", \"translation\": [" << a.t.x()
-          << ", " << a.t.y() << ", " << a.t.z() << "]}}" << (k + 1 < res.results.size() ? "," : "")
-          << "\n";
-    }
-    out << "  ]";
-    if (res.plane_map) {
-      const auto& m = *res.plane_map;
-      out << ",\n  \"plane_map\": {\"file\": " << jsonString(opt.planes_file)
-          << ", \"map_planes\": " << m.map_planes << ", \"true_planes\": " << m.planes.size()
-          << ", \"duplicates\": " << m.duplicates << ", \"mixed\": " << m.mixed
-          << ", \"unmatched\": " << m.unmatched << ", \"on_moving\": " << m.on_moving
-          << ",\n    \"planes\": [";
-      for (size_t k = 0; k < m.planes.size(); ++k) {
-        const auto& p = m.planes[k];
-        out << (k ? ",\n      " : "\n      ") << "{\"id\": " << p.true_id
-            << ", \"map_entries\": " << p.map_entries
-            << ", \"normal_error_deg\": " << p.normal_error_deg
-            << ", \"distance_error_m\": " << p.distance_error_m << ", \"seen_s\": " << p.seen_s
-            << ", \"normal_sigma_deg\": " << p.normal_sigma_deg
-            << ", \"distance_sigma_m\": " << p.distance_sigma_m << "}";
-      }
-      out << "]";
-      if (res.visible_s) {
-        const auto& missing = res.missing_planes;
-        for (const auto& [name, list] : {std::pair{"missing", &missing.missing},
-                                         std::pair{"untrackable", &missing.untrackable}}) {
-          out << ",\n    \"" << name << "\": [";
-          for (const auto& plane : *list)
-            out << (&plane == &list->front() ? "" : ", ") << "{\"id\": " << plane.true_id
-                << ", \"seen_s\": " << plane.visible.seen_s
-                << ", \"trackable_s\": " << plane.visible.trackable_s << "}";
-          out << "]";
-        }
-      }
-      out << "}";
-    }
-    out << "\n}\n";
-  });
+  std::vector<JsonObject> estimates;
+  for (size_t k = 0; k < res.results.size(); ++k)
+    estimates.push_back(estimateJson(opt, res.labels[k], opt.est_files[k], res.results[k]));
+  JsonObject json;
+  json.text("ground_truth", opt.gt_file)
+      .text("alignment", eval::toString(opt.eval.align))
+      .number("max_dt", opt.eval.max_dt)
+      .objects("estimates", estimates);
+  if (res.plane_map) json.object("plane_map", planeMapJson(opt, res));
+  writeFileAtomically(opt.json_file, [&](std::ostream& out) { out << json.str(); });
 }
 
 std::string formatPlaneMapReport(const eval::PlaneMapAccuracy& m) {

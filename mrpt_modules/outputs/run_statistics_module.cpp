@@ -37,15 +37,12 @@ double peakMemoryMb() {
 
 namespace {
 
-/// `[{"t": 12.3, "cause": "..."}, ...]`
-std::string resetCausesJson(const std::vector<ResetEvent>& resets) {
-  std::ostringstream out;
-  out << "[";
-  for (size_t k = 0; k < resets.size(); ++k)
-    out << (k ? ", " : "") << "{\"t\": " << resets[k].t
-        << ", \"cause\": " << jsonString(resets[k].cause) << "}";
-  out << "]";
-  return out.str();
+/// One object per reset: `{"t": 12.3, "cause": "..."}`.
+std::vector<JsonObject> resetCausesJson(const std::vector<ResetEvent>& resets) {
+  std::vector<JsonObject> out;
+  for (const ResetEvent& r : resets)
+    out.push_back(JsonObject().number("t", r.t).text("cause", r.cause));
+  return out;
 }
 
 }  // namespace
@@ -111,13 +108,13 @@ void RunStatisticsModule::write(double wall) const {
   JsonObject summary;
   summary.flag("complete", end_.complete)
       .text("input_error", end_.input_error)
-      .number("frames", static_cast<double>(rows_.size()))
-      .number("poses", static_cast<double>(poses_))
+      .integer("frames", static_cast<long long>(rows_.size()))
+      .integer("poses", static_cast<long long>(poses_))
       .number("initialized_at", e.initialized_at)
       .number("time_offset_s", e.time_offset_s)
       .text("time_offset_note", e.time_offset_note)
-      .number("resets", static_cast<double>(e.resets.size()))
-      .raw("reset_causes", resetCausesJson(e.resets))
+      .integer("resets", static_cast<long long>(e.resets.size()))
+      .objects("reset_causes", resetCausesJson(e.resets))
       .number("total_ms_median", percentile(total_ms, 0.5))
       .number("total_ms_p95", percentile(total_ms, 0.95))
       .number("load_ms_median", percentile(load_ms, 0.5))
@@ -131,8 +128,8 @@ void RunStatisticsModule::write(double wall) const {
       .number("sequence_s", sequence_s)
       .number("real_time_factor", odometry_wall > 0 ? sequence_s / odometry_wall : 0)
       .number("peak_memory_mb", peakMemoryMb())
-      .number("map_planes", static_cast<double>(map_planes))
-      .number("tentative_planes", static_cast<double>(tentative_planes))
+      .integer("map_planes", static_cast<long long>(map_planes))
+      .integer("tentative_planes", static_cast<long long>(tentative_planes))
       .number("refinement_s", m.refinement_s)
       .text("refinement", m.refinement_report)
       .text("status", estimator_ ? e.status : "no estimator");
