@@ -1,7 +1,6 @@
 #include "mrpt_modules/estimator/sliding_window_estimator.h"
 
 #include <ceres/ceres.h>
-#include <ceres/sphere_manifold.h>
 #include <Eigen/Dense>
 #include <chrono>
 #include <cmath>
@@ -10,7 +9,6 @@
 #include "mrpt_modules/estimator/estimator_problem.h"
 #include "mrpt_modules/factors/homography_factor.h"
 #include "mrpt_modules/factors/imu_factor.h"
-#include "mrpt_modules/factors/marginal_covariance.h"
 #include "mrpt_modules/factors/parameter_blocks.h"
 #include "mrpt_modules/factors/pose_manifold.h"
 #include "mrpt_modules/factors/reprojection_factor.h"
@@ -20,10 +18,6 @@
 namespace rpvio {
 namespace {
 
-// Plane parameters handed to the planes map, which fuses visits by information. Their covariance
-// is the window's, relative to its oldest pose; between visits the odometry drifts (the simulator's
-// trajectory errors: 0.1 deg, 3 cm), which no visit is trusted beyond.
-constexpr double kVisitDriftNormalDeg = 0.2, kVisitDriftDistance = 0.03;
 constexpr double kMinDepth = 0.1, kMaxDepth = 100;
 
 /// The noise densities and random walks of `noise` times `factor`.
@@ -40,8 +34,8 @@ SlidingWindowEstimator::SlidingWindowEstimator(const Calibration& calibration,
                                                const EstimatorOptions& options, MapSink& map)
     : calib_(calibration),
       options_(options),
-      window_imu_noise_(inflatedNoise(calibration.imu, options.imu_noise_inflation)),
-      imu_link_(window_imu_noise_, calibration.imu.gravity, options.imuLinkOptions()),
+      imu_link_(inflatedNoise(calibration.imu, options.imu_noise_inflation),
+                calibration.imu.gravity, options.imuLinkOptions()),
       bootstrapper_(calibration, options, imu_link_),
       planes_(options.homography_planes),
       map_(map) {
@@ -130,37 +124,7 @@ void SlidingWindowEstimator::optimize(bool plane_covariances) {
   // would be taken as exact and the others' sigmas shrink (a wall's offset 0.16 -> 0.05 m, for an
   // error of 0.17 m, EstimatorOnSimulator.PlaneMapCovariancesAreConsistent).
   for (double* block : held) problem.SetParameterBlockVariable(block);
-  updatePlaneCovariances(problem, planes_with_factors);
-}
-
-void SlidingWindowEstimator::updatePlaneCovariances(ceres::Problem& problem,
-                                                    const std::set<int>& planes) {
-  std::vector<double*> blocks;
-  for (int mask : planes) {
-    blocks.push_back(planes_.estimates().at(mask).normal);
-    blocks.push_back(planes_.estimates().at(mask).distance);
-  }
-  if (blocks.empty()) return;
-  const auto covariance = marginalCovariance(problem, blocks);
-  if (!covariance) return;  // not evaluable: the planes keep their last covariance
-  const double drift_normal = kVisitDriftNormalDeg * M_PI / 180;
-  int offset = 0;
-  for (int mask : planes) {
-    PlaneEstimate& e = planes_.estimates().at(mask);
-    // Tangent (2 normal numbers on the sphere, d) to ambient (n, d).
-    Eigen::Matrix<double, 3, 2, Eigen::RowMajor> plus;
-    ceres::SphereManifold<3>().PlusJacobian(e.normal, plus.data());
-    Eigen::Matrix<double, 4, 3> E = Eigen::Matrix<double, 4, 3>::Zero();
-    E.topLeftCorner<3, 2>() = plus;
-    E(3, 2) = 1;
-    Eigen::Matrix4d C = E * covariance->block<3, 3>(offset, offset) * E.transpose();
-    const Eigen::Vector3d n = Eigen::Vector3d(e.normal).normalized();
-    C.topLeftCorner<3, 3>() +=
-        drift_normal * drift_normal * (Eigen::Matrix3d::Identity() - n * n.transpose());
-    C(3, 3) += kVisitDriftDistance * kVisitDriftDistance;
-    e.covariance = C;
-    offset += 3;
-  }
+  planes_.updateCovariances(problem, planes_with_factors);
 }
 
 void SlidingWindowEstimator::rejectDepthOutliers() {

@@ -97,7 +97,6 @@ class SlidingWindowEstimator {
   /// One solve of the window; with `plane_covariances`, the covariance of every plane with
   /// factors then (what the planes map weighs a visit by).
   void optimize(bool plane_covariances = false);
-  void updatePlaneCovariances(ceres::Problem& problem, const std::set<int>& planes);
   void rejectDepthOutliers();
   std::string failure(const double* predicted_pose) const;
   void marginalizeOldest();
@@ -112,8 +111,7 @@ class SlidingWindowEstimator {
 
   Calibration calib_;
   EstimatorOptions options_;
-  ImuNoise window_imu_noise_;  // calib_.imu inflated for the window's factors
-  ImuLink imu_link_;
+  ImuLink imu_link_;  // with calib_.imu inflated for the window's factors
   Bootstrapper bootstrapper_;
   double mount_[7];  // T_BC as a (constant) pose block
   bool initialized_ = false;

@@ -1,7 +1,10 @@
 #include "mrpt_modules/estimator/window_planes.h"
 
+#include <ceres/sphere_manifold.h>
 #include <Eigen/Eigenvalues>
 #include <cmath>
+
+#include "mrpt_modules/factors/marginal_covariance.h"
 
 namespace rpvio {
 namespace {
@@ -12,6 +15,10 @@ constexpr double kMaxPlaneRmsPerDepth = 0.04;
 // Until a covariance has been computed, a plane is handed to the map with this standard deviation
 // of (n, d) for one supporting point.
 constexpr double kPlaneSigmaPerPoint = 0.05;
+// Plane parameters handed to the planes map, which fuses visits by information. Their covariance
+// is the window's, relative to its oldest pose; between visits the odometry drifts (the simulator's
+// trajectory errors: 0.1 deg, 3 cm), which no visit is trusted beyond.
+constexpr double kVisitDriftNormalDeg = 0.2, kVisitDriftDistance = 0.03;
 
 }  // namespace
 
@@ -114,6 +121,35 @@ std::vector<PlaneObservation> WindowPlanes::observations(const FeatureManager& f
     out.push_back(std::move(o));
   }
   return out;
+}
+
+void WindowPlanes::updateCovariances(ceres::Problem& problem, const std::set<int>& planes) {
+  std::vector<double*> blocks;
+  for (int mask : planes) {
+    blocks.push_back(planes_.at(mask).normal);
+    blocks.push_back(planes_.at(mask).distance);
+  }
+  if (blocks.empty()) return;
+  const auto covariance = marginalCovariance(problem, blocks);
+  if (!covariance) return;  // not evaluable: the planes keep their last covariance
+  const double drift_normal = kVisitDriftNormalDeg * M_PI / 180;
+  int offset = 0;
+  for (int mask : planes) {
+    PlaneEstimate& e = planes_.at(mask);
+    // Tangent (2 normal numbers on the sphere, d) to ambient (n, d).
+    Eigen::Matrix<double, 3, 2, Eigen::RowMajor> plus;
+    ceres::SphereManifold<3>().PlusJacobian(e.normal, plus.data());
+    Eigen::Matrix<double, 4, 3> E = Eigen::Matrix<double, 4, 3>::Zero();
+    E.topLeftCorner<3, 2>() = plus;
+    E(3, 2) = 1;
+    Eigen::Matrix4d C = E * covariance->block<3, 3>(offset, offset) * E.transpose();
+    const Eigen::Vector3d n = Eigen::Vector3d(e.normal).normalized();
+    C.topLeftCorner<3, 3>() +=
+        drift_normal * drift_normal * (Eigen::Matrix3d::Identity() - n * n.transpose());
+    C(3, 3) += kVisitDriftDistance * kVisitDriftDistance;
+    e.covariance = C;
+    offset += 3;
+  }
 }
 
 }  // namespace rpvio

@@ -3,6 +3,8 @@
 // the largest with hysteresis, or all), their parameters when they enter (the planes map's when it
 // knows the label, else a least-squares fit of their triangulated features), and what the window
 // hands the map.
+#include <ceres/problem.h>
+
 #include <map>
 #include <set>
 #include <vector>
@@ -48,6 +50,10 @@ class WindowPlanes {
   /// Each plane with at least kMinPlanePoints triangulated points, for the map (stamped t).
   std::vector<PlaneObservation> observations(const FeatureManager& features,
                                              const CameraPoseLookup& cameras, double t) const;
+  /// The chosen planes' covariances of (n, d) from the solved `problem` (the window's marginal
+  /// covariance on the sphere, moved to ambient (n, d), plus the drift between visits); a plane
+  /// keeps its last one when the problem cannot give it.
+  void updateCovariances(ceres::Problem& problem, const std::set<int>& planes);
   void clear() {
     planes_.clear();
     used_.clear();
