@@ -57,4 +57,10 @@ void OptionsLoader::operator()(const char* key, std::string& value) {
   value = ini_.textOr(section_, key, value);
 }
 
+void OptionsLoader::operator()(const char* key, Eigen::Vector3d& value) {
+  if (!ini_.has(section_, key)) return;
+  const std::vector<double> v = ini_.numbers(section_, key, 3);
+  value = Eigen::Vector3d(v[0], v[1], v[2]);
+}
+
 }  // namespace rpvio

@@ -10,6 +10,7 @@
 // keys absent keep the default; a bad value is an InputError naming the file and line) and
 // `describeOptions(options)` (`key = value` lines an INI file can be made of). Unknown keys are
 // found by IniFile::unreadKeys() once every module has read its section.
+#include <Eigen/Core>
 #include <cstdint>
 #include <sstream>
 #include <string>
@@ -42,6 +43,7 @@ class OptionsLoader {
   void operator()(const char* key, uint64_t& value);  // a non-negative whole number
   void operator()(const char* key, bool& value);      // true/false, 1/0, yes/no
   void operator()(const char* key, std::string& value);
+  void operator()(const char* key, Eigen::Vector3d& value);  // three numbers: x y z
   template <typename Enum>
   void operator()(const char* key, Enum& value, const OptionNames<Enum>& names) {
     if (!ini_.has(section_, key)) return;
@@ -73,6 +75,10 @@ class OptionsDescriber {
   void operator()(const char* key, uint64_t value) { line(key, std::to_string(value)); }
   void operator()(const char* key, bool value) { line(key, value ? "true" : "false"); }
   void operator()(const char* key, const std::string& value) { line(key, value); }
+  void operator()(const char* key, const Eigen::Vector3d& value) {
+    line(key, exactNumberText(value.x()) + " " + exactNumberText(value.y()) + " " +
+                  exactNumberText(value.z()));
+  }
   template <typename Enum>
   void operator()(const char* key, Enum value, const OptionNames<Enum>& names) {
     for (const auto& [name, option] : names)
@@ -85,8 +91,8 @@ class OptionsDescriber {
   std::ostringstream out_;
 };
 
-/// The options of `section` over the defaults of Options (Options::validate(loader) runs after,
-/// when it has one).
+/// The options of `section` over `defaults` (Options::validate(loader) runs after, when it has
+/// one).
 template <typename Options, typename = void>
 struct HasValidate : std::false_type {};
 template <typename Options>
@@ -94,8 +100,8 @@ struct HasValidate<Options, std::void_t<decltype(std::declval<const Options&>().
                                 std::declval<const OptionsLoader&>()))>> : std::true_type {};
 
 template <typename Options>
-Options loadOptions(const IniFile& ini, const std::string& section) {
-  Options options;
+Options loadOptions(const IniFile& ini, const std::string& section, Options defaults = Options()) {
+  Options options = std::move(defaults);
   OptionsLoader loader(ini, section);
   options.fields(loader);
   if constexpr (HasValidate<Options>::value) options.validate(loader);

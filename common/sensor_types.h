@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "common/options.h"
+
 namespace rpvio {
 
 struct ImuSample {
@@ -40,6 +42,16 @@ struct ImuNoise {
   double accel_random_walk = 3.0e-3;    // m/s^3/sqrt(Hz)
   double rate_hz = 200.0;
   double gravity = 9.81;  // m/s^2, magnitude
+
+  template <class Visitor>
+  void fields(Visitor& v) {
+    RPVIO_OPTION(v, rate_hz);
+    RPVIO_OPTION(v, gyro_noise_density);
+    RPVIO_OPTION(v, accel_noise_density);
+    RPVIO_OPTION(v, gyro_random_walk);
+    RPVIO_OPTION(v, accel_random_walk);
+    RPVIO_OPTION(v, gravity);
+  }
 };
 
 /// A dataset's calibration (calib.ini, rawlog_io/calibration.h reads and writes it).

@@ -19,6 +19,23 @@ struct AutoExposureParams {
   double time_constant = 0.25;  // s
   double initial_gain = 1.0;    // of the first frame
   double min_gain = 0.125, max_gain = 8.0;
+
+  template <class Visitor>
+  void fields(Visitor& v) {
+    RPVIO_OPTION(v, enabled);
+    RPVIO_OPTION(v, target);
+    RPVIO_OPTION(v, time_constant);
+    RPVIO_OPTION(v, initial_gain);
+    RPVIO_OPTION(v, min_gain);
+    RPVIO_OPTION(v, max_gain);
+  }
+  void validate(const OptionsLoader& loader) const {
+    loader.require(target > 0, "target", "must be positive");
+    loader.require(time_constant > 0, "time_constant", "must be positive");
+    loader.require(initial_gain > 0, "initial_gain", "must be positive");
+    loader.require(min_gain > 0, "min_gain", "must be positive");
+    loader.require(max_gain >= min_gain, "max_gain", "must not be below min_gain");
+  }
 };
 
 /// One loop step, first order in log gain (error e^{−t/τ}):

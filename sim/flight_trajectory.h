@@ -7,6 +7,8 @@
 // Body frame (= IMU frame): x forward, y left, z up. World: z up, origin at the circle's centre.
 #include <Eigen/Geometry>
 
+#include "common/options.h"
+
 namespace rpvio::sim {
 
 struct FlightParams {
@@ -20,6 +22,23 @@ struct FlightParams {
   double start_push_time = 1.0;   // s, its time constant (peak acceleration 2 push / time^2)
   double tilt_amplitude = 0.03;   // rad, roll and pitch oscillation
   double start_angle = 0.0;       // rad, azimuth of the start on the circle
+
+  template <class Visitor>
+  void fields(Visitor& v) {
+    RPVIO_OPTION(v, radius);
+    RPVIO_OPTION(v, speed);
+    RPVIO_OPTION(v, speed_ramp);
+    RPVIO_OPTION(v, height);
+    RPVIO_OPTION(v, height_amplitude);
+    RPVIO_OPTION(v, height_period);
+    RPVIO_OPTION(v, start_push);
+    RPVIO_OPTION(v, start_push_time);
+    RPVIO_OPTION(v, tilt_amplitude);
+    RPVIO_OPTION(v, start_angle);
+  }
+  void validate(const OptionsLoader& loader) const {
+    loader.require(radius > 0, "radius", "must be positive");
+  }
 };
 
 struct FlightState {

@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <opencv2/core.hpp>
 
+#include "common/options.h"
+
 namespace rpvio::sim {
 
 struct MaskDegradation {
@@ -12,6 +14,13 @@ struct MaskDegradation {
   int split_plane_id = 0;          // this plane's right half gets id split_plane_id + 100
   double spurious_blob_rate =
       0.0;  // per frame: probability of a plane-labelled blob on a character
+  template <class Visitor>
+  void fields(Visitor& v) {
+    RPVIO_OPTION(v, boundary_bleed_px);
+    RPVIO_OPTION(v, missed_plane_rate);
+    RPVIO_OPTION(v, split_plane_id);
+    RPVIO_OPTION(v, spurious_blob_rate);
+  }
   bool enabled() const {
     return boundary_bleed_px > 0 || missed_plane_rate > 0 || split_plane_id > 0 ||
            spurious_blob_rate > 0;

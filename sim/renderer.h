@@ -20,7 +20,14 @@ struct RenderOptions {
   double noise_sigma = 2.0;  // grey levels, Gaussian
   double vignetting = 0.25;  // relative darkening at the image corners
   int supersampling = 0;     // 0: 2x2 only where labels change (edges); k > 0: k x k everywhere
-  int threads = 0;           // 0: all hardware threads
+  int threads = 0;           // 0: all hardware threads (not an INI key: rendering is deterministic)
+
+  template <class Visitor>
+  void fields(Visitor& v) {
+    RPVIO_OPTION(v, noise_sigma);
+    RPVIO_OPTION(v, vignetting);
+    RPVIO_OPTION(v, supersampling);
+  }
 };
 
 struct RenderedFrame {

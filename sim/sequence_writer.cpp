@@ -145,6 +145,11 @@ SequenceStats writeSequence(const SimConfig& config, const std::string& out_dir,
                .number("dynamic_fraction_first_2s", stats.coverage.first_2s_mean)
                .str();
   });
+  writeFileAtomically((fs::path(out_dir) / "scene_used.ini").string(), [&](std::ostream& out) {
+    out << "# the scene of this sequence (profile " << config.profile_name
+        << " and overrides): rpvio-sim --config reads it back\n"
+        << config.describe();
+  });
   saveCalibration((fs::path(out_dir) / "calib.ini").string(), sim.calibration());
   writer.close();
   return stats;

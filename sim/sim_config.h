@@ -5,6 +5,7 @@
 
 #include "common/sensor_types.h"
 #include "sim/auto_exposure.h"
+#include "sim/camera_rig.h"
 #include "sim/crowd.h"
 #include "sim/fault_injection.h"
 #include "sim/flight_trajectory.h"
@@ -24,8 +25,7 @@ struct SimConfig {
   FlightParams flight;
   SceneParams scene;  // scene.characters = number of characters
   CrowdParams crowd;  // who the characters are and how they move
-  PinholeCamera camera = pinholeCamera(640, 480, 90);
-  Eigen::Isometry3d T_BC = defaultCameraMount();
+  CameraRig camera;
   RenderOptions render;
   double exposure_time = 0;  // s, shutter open over [t − e/2, t + e/2] (motion blur); 0: sharp
   AutoExposureParams auto_exposure;
@@ -35,11 +35,35 @@ struct SimConfig {
   MaskDegradation mask;
   FaultInjection faults;  // off by default; set by rpvio-sim's fault options
 
-  /// Image size and horizontal field of view (deg); principal point at the image centre.
-  static PinholeCamera pinholeCamera(int width, int height, double hfov_deg);
-  /// Camera looking along body x, 10 cm ahead and 5 cm above the IMU (camera z = body x, camera
-  /// x = −body y, camera y = −body z).
-  static Eigen::Isometry3d defaultCameraMount();
+  /// The scene file's sections: section(name, fields) for each, fields(visitor) visiting its keys
+  /// (the options pattern of common/options.h; a key is its field's name).
+  template <class Section>
+  void sections(Section&& section) {
+    section("sequence", [this](auto& v) {
+      RPVIO_OPTION(v, duration);
+      RPVIO_OPTION(v, camera_rate);
+      RPVIO_OPTION(v, time_offset);
+      RPVIO_OPTION(v, seed);
+      v("characters", scene.characters);
+    });
+    section("flight", [this](auto& v) { flight.fields(v); });
+    section("scene", [this](auto& v) { scene.fields(v); });
+    section("crowd", [this](auto& v) { crowd.fields(v); });
+    section("camera", [this](auto& v) { camera.fields(v); });
+    section("image", [this](auto& v) {
+      render.fields(v);
+      RPVIO_OPTION(v, exposure_time);
+    });
+    section("auto_exposure", [this](auto& v) { auto_exposure.fields(v); });
+    section("imu", [this](auto& v) {
+      imu.fields(v);
+      v("noise", imu_noise);
+      v("gyro_bias", initial_bias.gyro);
+      v("accel_bias", initial_bias.accel);
+    });
+    section("mask", [this](auto& v) { mask.fields(v); });
+  }
+
   static ImuBiasState defaultInitialBias();
   /// The built-in profiles: "paper" (the defaults: the paper's RPVIO-Sim warehouse) and "hard"
   /// (a lower flight through a crowd that fills the view, CNN-like masks; docs/configuration.md).
@@ -49,6 +73,8 @@ struct SimConfig {
   /// bad value or an unknown key.
   static SimConfig load(const std::string& ini_path, const SimConfig& base);
   static SimConfig load(const std::string& ini_path) { return load(ini_path, SimConfig()); }
+  /// Every key as a scene file: load(file) over any base gives this configuration back.
+  std::string describe() const;
   Calibration calibration() const;
 };
 

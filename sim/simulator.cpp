@@ -14,13 +14,15 @@ SceneParams seeded(SceneParams p, uint64_t seed) {
 
 Simulator::Simulator(const SimConfig& config)
     : config_(config),
+      camera_(config.camera.intrinsics()),
+      T_BC_(config.camera.T_BC()),
       flight_(config.flight),
       scene_(seeded(config.scene, config.seed)),
       auto_exposure_(config.auto_exposure, config.camera_rate) {
-  if (config.crowd.layout == "flight") {
-    const double tan_half_fov = 0.5 * config.camera.width / config.camera.fx;
-    scene_.setCharacters(makeFlightCrowd(config.scene.characters, config.crowd, flight_,
-                                         config.T_BC, tan_half_fov, config.duration, config.seed));
+  if (config.crowd.layout == CrowdLayout::Flight) {
+    const double tan_half_fov = 0.5 * camera_.width / camera_.fx;
+    scene_.setCharacters(makeFlightCrowd(config.scene.characters, config.crowd, flight_, T_BC_,
+                                         tan_half_fov, config.duration, config.seed));
   }
 }
 
@@ -32,7 +34,7 @@ Eigen::Isometry3d Simulator::bodyPose(double t) const {
   return T;
 }
 
-Eigen::Isometry3d Simulator::cameraPose(double t) const { return bodyPose(t) * config_.T_BC; }
+Eigen::Isometry3d Simulator::cameraPose(double t) const { return bodyPose(t) * T_BC_; }
 
 std::vector<double> Simulator::frameTimes() const {
   std::vector<double> times;
@@ -48,7 +50,7 @@ void Simulator::poseAt(double t) {
 
 double Simulator::exposureGain(double t) {
   if (!config_.auto_exposure.enabled) return 1.0;
-  const PinholeCamera meter_camera = meteringCamera(config_.camera);
+  const PinholeCamera meter_camera = meteringCamera(camera_);
   return auto_exposure_.gain(t, [&](double t_meter, double gain) {
     poseAt(t_meter);
     const cv::Mat radiance =
@@ -62,15 +64,14 @@ RenderedFrame Simulator::render(double t, int frame_index) {
   poseAt(t);
   const uint64_t frame_seed = config_.seed * 1000003ULL + static_cast<uint64_t>(frame_index);
   const Eigen::Isometry3d T_WC = cameraPose(t);
-  SceneRadiance sharp = renderRadiance(scene_, config_.camera, T_WC, config_.render);
+  SceneRadiance sharp = renderRadiance(scene_, camera_, T_WC, config_.render);
   if (config_.exposure_time > 0) {
     const double t_open = t - 0.5 * config_.exposure_time,
                  t_close = t + 0.5 * config_.exposure_time;
     const ShutterInterval shutter{t_open, t_close, cameraPose(t_open), cameraPose(t_close)};
-    sharp.radiance =
-        motionBlur(sharp, scene_, config_.camera, T_WC, shutter, config_.render.threads);
+    sharp.radiance = motionBlur(sharp, scene_, camera_, T_WC, shutter, config_.render.threads);
   }
-  RenderedFrame frame{exposeImage(sharp.radiance, config_.camera, config_.render, gain, frame_seed),
+  RenderedFrame frame{exposeImage(sharp.radiance, camera_, config_.render, gain, frame_seed),
                       sharp.mask, sharp.dynamic};
   if (config_.mask.enabled()) degradeMask(frame.mask, config_.mask, frame_seed ^ 0x5bd1e995ULL);
   return frame;
@@ -78,20 +79,20 @@ RenderedFrame Simulator::render(double t, int frame_index) {
 
 SceneHit Simulator::castPixel(double t, double u, double v) {
   poseAt(t);
-  const auto [o, d] = pixelRay(config_.camera, cameraPose(t), u, v);
-  return scene_.cast(o, d, 1.0 / config_.camera.fx);
+  const auto [o, d] = pixelRay(camera_, cameraPose(t), u, v);
+  return scene_.cast(o, d, 1.0 / camera_.fx);
 }
 
 std::optional<Eigen::Vector2d> Simulator::project(double t, const Eigen::Vector3d& X) const {
   const Eigen::Vector3d Xc = cameraPose(t).inverse() * X;
   if (Xc.z() <= 1e-6) return std::nullopt;
-  const PinholeCamera& c = config_.camera;
+  const PinholeCamera& c = camera_;
   return Eigen::Vector2d(c.fx * Xc.x() / Xc.z() + c.cx, c.fy * Xc.y() / Xc.z() + c.cy);
 }
 
 double Simulator::dynamicFraction(double t, int stride) {
   poseAt(t);
-  const PinholeCamera& c = config_.camera;
+  const PinholeCamera& c = camera_;
   const Eigen::Isometry3d T_WC = cameraPose(t);
   const WarehouseScene::PlanesInView view = scene_.planesInView(T_WC.translation());
   int seen = 0, total = 0;

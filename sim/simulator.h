@@ -16,6 +16,7 @@ class Simulator {
   explicit Simulator(const SimConfig& config);
 
   const SimConfig& config() const { return config_; }
+  const PinholeCamera& camera() const { return camera_; }
   Calibration calibration() const { return config_.calibration(); }
   const WarehouseScene& scene() const { return scene_; }
 
@@ -45,6 +46,8 @@ class Simulator {
 
  private:
   SimConfig config_;
+  PinholeCamera camera_;    // config_.camera's
+  Eigen::Isometry3d T_BC_;  // config_.camera's
   FlightTrajectory flight_;
   WarehouseScene scene_;
   AutoExposure auto_exposure_;

@@ -7,6 +7,18 @@
 #include <stdexcept>
 
 namespace rpvio::sim {
+
+void SceneParams::validate(const OptionsLoader& loader) const {
+  loader.require(texel_size > 0, "texel_size", "must be positive");
+  loader.require(moving_speed > 0, "moving_speed", "must be positive");
+  loader.require(pallet_trucks >= 0 && sliding_panels >= 0 &&
+                     pallet_trucks * kPalletTruckFaces + sliding_panels * kSlidingPanelFaces <=
+                         kMovingPlaneIdLast - kMovingPlaneIdFirst + 1,
+                 "pallet_trucks",
+                 "(10 faces each) and sliding_panels (2 faces each) need more than the 40 plane "
+                 "ids 200..239");
+}
+
 namespace {
 
 // Paths of the moving objects: tangent to these circles around the centre, between the crates

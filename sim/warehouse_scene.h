@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/options.h"
 #include "sim/character.h"
 #include "sim/moving_planar_object.h"
 #include "sim/scene_plane.h"
@@ -51,9 +52,29 @@ struct SceneParams {
   double light_intensity = 2000;        // radiance of the panels (surfaces are 0..255)
   int pallet_trucks = 0;                // moving planar objects (ids 200..239: at most 40 faces)
   int sliding_panels = 0;
-  double moving_speed = 1.5;  // m/s, peak speed of trucks and panels
-  uint64_t seed = 1;
-  std::vector<DiscMarker> markers;
+  double moving_speed = 1.5;        // m/s, peak speed of trucks and panels
+  uint64_t seed = 1;                // [sequence] seed
+  std::vector<DiscMarker> markers;  // tests only
+
+  template <class Visitor>
+  void fields(Visitor& v) {  // characters and seed are [sequence] keys
+    RPVIO_OPTION(v, room_half_size);
+    RPVIO_OPTION(v, room_height);
+    RPVIO_OPTION(v, ceiling);
+    RPVIO_OPTION(v, crates);
+    RPVIO_OPTION(v, crate_ring_min);
+    RPVIO_OPTION(v, crate_ring_max);
+    RPVIO_OPTION(v, racks);
+    RPVIO_OPTION(v, texel_size);
+    RPVIO_OPTION(v, character_ring_radius);
+    RPVIO_OPTION(v, character_height);
+    RPVIO_OPTION(v, light_panels);
+    RPVIO_OPTION(v, light_intensity);
+    RPVIO_OPTION(v, pallet_trucks);
+    RPVIO_OPTION(v, sliding_panels);
+    RPVIO_OPTION(v, moving_speed);
+  }
+  void validate(const OptionsLoader& loader) const;
 };
 
 struct SceneHit {

@@ -46,7 +46,7 @@ Eigen::VectorXd solveLinear(const std::vector<UpToScaleFrame>& frames,
   Eigen::VectorXd b = Eigen::VectorXd::Zero(6 * (n - 1) + prior_rows);
   if (g_fixed)
     A.block<3, 3>(6 * (n - 1), 3 * n + 2) = kAccelBiasPriorWeight * Eigen::Matrix3d::Identity();
-  Eigen::Matrix<double, 3, 2> B;
+  Eigen::Matrix<double, 3, 2> B = Eigen::Matrix<double, 3, 2>::Zero();  // used when g_fixed
   Eigen::Vector3d g0 = Eigen::Vector3d::Zero();
   if (g_fixed) {
     g0 = g_fixed->normalized() * gravity;

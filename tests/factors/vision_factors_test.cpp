@@ -24,7 +24,7 @@ struct TwoViews {
   sim::Simulator sim{sim::SimConfig{}};
   double ti = 10.0, tj = 10.5;
   std::vector<double> pose_i = block(sim.bodyPose(ti)), pose_j = block(sim.bodyPose(tj));
-  std::vector<double> mount = block(sim.config().T_BC);
+  std::vector<double> mount = block(sim.config().camera.T_BC());
   Eigen::Vector2d normalized(double t, const Eigen::Vector3d& X) {
     const Eigen::Vector3d c = sim.cameraPose(t).inverse() * X;
     return c.head<2>() / c.z();

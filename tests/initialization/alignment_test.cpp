@@ -32,7 +32,7 @@ TEST(VisualInertialAlignment, RecoversScaleGravityBiasAndVelocity) {
     frames.push_back(f);
   }
   std::string why;
-  const auto result = alignVisualInertial(frames, config.T_BC, 9.81, &why);
+  const auto result = alignVisualInertial(frames, config.camera.T_BC(), 9.81, &why);
   ASSERT_TRUE(result) << why;
   const double scale_error = std::abs(result->scale * unknown_scale - 1.0);
   const Eigen::Vector3d g_true_c0 = T_w_c0.linear().transpose() * Eigen::Vector3d(0, 0, -9.81);

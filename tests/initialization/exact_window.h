@@ -24,7 +24,8 @@ inline ExactWindow exactWindow(sim::Simulator& sim, double t0, double t1,
                                const Eigen::Vector3d& gyro_bias, double pixel_noise = 0,
                                size_t track_life = 40, uint64_t seed = 1) {
   const sim::SimConfig& config = sim.config();
-  const double fx = config.camera.fx, fy = config.camera.fy;
+  const sim::PinholeCamera& camera = sim.camera();
+  const double fx = camera.fx, fy = camera.fy;
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> jitter(0, 1);
   std::normal_distribution<double> noise(0, 1);
@@ -44,8 +45,8 @@ inline ExactWindow exactWindow(sim::Simulator& sim, double t0, double t1,
     if (k % 5 == 0)
       for (int gy = 0; gy < 8; ++gy)
         for (int gx = 0; gx < 10; ++gx) {
-          const sim::SceneHit hit = sim.castPixel(t, config.camera.width * (gx + jitter(rng)) / 10,
-                                                  config.camera.height * (gy + jitter(rng)) / 8);
+          const sim::SceneHit hit = sim.castPixel(t, camera.width * (gx + jitter(rng)) / 10,
+                                                  camera.height * (gy + jitter(rng)) / 8);
           if (hit.label > 0 && hit.label < sim::kMaskNothing)
             points.push_back({hit.point, hit.label, static_cast<size_t>(k)});
         }
@@ -54,15 +55,15 @@ inline ExactWindow exactWindow(sim::Simulator& sim, double t0, double t1,
     for (size_t i = 0; i < points.size(); ++i) {
       if (k - points[i].born >= track_life) continue;
       const auto pixel = sim.project(t, points[i].X);
-      if (!pixel || pixel->x() < 0 || pixel->y() < 0 || pixel->x() > config.camera.width ||
-          pixel->y() > config.camera.height)
+      if (!pixel || pixel->x() < 0 || pixel->y() < 0 || pixel->x() > camera.width ||
+          pixel->y() > camera.height)
         continue;
       TrackedFeature f;
       f.id = static_cast<int>(i);
       f.plane_id = points[i].plane;
       f.pixel = *pixel + pixel_noise * Eigen::Vector2d(noise(rng), noise(rng));
-      f.normalized = Eigen::Vector2d((f.pixel.x() - config.camera.cx) / fx,
-                                     (f.pixel.y() - config.camera.cy) / fy);
+      f.normalized =
+          Eigen::Vector2d((f.pixel.x() - camera.cx) / fx, (f.pixel.y() - camera.cy) / fy);
       frame.features.push_back(f);
     }
     w.frames.push_back(frame);

@@ -129,8 +129,9 @@ TEST(AutoExposure, OffMeansGainOneAndTodaysImage) {
   Simulator sim(config);
   EXPECT_EQ(sim.exposureGain(5.0), 1.0);
   const RenderedFrame frame = sim.render(5.0, 7);
-  const RenderedFrame reference = renderFrame(sim.scene(), config.camera, sim.cameraPose(5.0),
-                                              config.render, config.seed * 1000003ULL + 7);
+  const RenderedFrame reference =
+      renderFrame(sim.scene(), config.camera.intrinsics(), sim.cameraPose(5.0), config.render,
+                  config.seed * 1000003ULL + 7);
   EXPECT_EQ(cv::norm(frame.image, reference.image, cv::NORM_INF), 0);
 }
 

@@ -59,7 +59,7 @@ TEST(Crowd, PeopleWalkContinuouslyAndEnterFromOutsideTheView) {
   config.scene.characters = 8;
   config.duration = kSpan;
   Simulator sim(config);
-  const PinholeCamera& cam = config.camera;
+  const PinholeCamera cam = config.camera.intrinsics();
   auto outsideImage = [&](double t, const CapsuleFigure& figure) {
     for (const Capsule& part : figure.parts())
       for (const Eigen::Vector3d& end : {part.a, part.b}) {

@@ -14,7 +14,7 @@ namespace {
 Eigen::Isometry3d lookingAt(const Eigen::Vector3d& position, double yaw) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
-               SimConfig::defaultCameraMount().linear();
+               CameraRig().T_BC().linear();
   T.translation() = position;
   return T;
 }
@@ -120,8 +120,8 @@ TEST(MotionBlur, SimulatorBlursOnlyWithAnExposureTime) {
   const RenderedFrame sharp = sharp_sim.render(t, 3);
   // exposure_time 0 is today's image: renderFrame at the frame's pose.
   const RenderedFrame reference =
-      renderFrame(sharp_sim.scene(), config.camera, sharp_sim.cameraPose(t), config.render,
-                  config.seed * 1000003ULL + 3);
+      renderFrame(sharp_sim.scene(), config.camera.intrinsics(), sharp_sim.cameraPose(t),
+                  config.render, config.seed * 1000003ULL + 3);
   EXPECT_EQ(cv::norm(sharp.image, reference.image, cv::NORM_INF), 0);
 
   // The blur follows the true camera motion over [t − e/2, t + e/2]; noise comes after it.
@@ -132,11 +132,12 @@ TEST(MotionBlur, SimulatorBlursOnlyWithAnExposureTime) {
   const double t_open = t - 0.05, t_close = t + 0.05;
   const ShutterInterval shutter{t_open, t_close, blur_sim.cameraPose(t_open),
                                 blur_sim.cameraPose(t_close)};
-  const SceneRadiance radiance =
-      renderRadiance(blur_sim.scene(), config.camera, blur_sim.cameraPose(t), config.render);
-  const cv::Mat expected = exposeImage(
-      motionBlur(radiance, blur_sim.scene(), config.camera, blur_sim.cameraPose(t), shutter, 0),
-      config.camera, config.render, 1.0, config.seed * 1000003ULL + 3);
+  const SceneRadiance radiance = renderRadiance(blur_sim.scene(), config.camera.intrinsics(),
+                                                blur_sim.cameraPose(t), config.render);
+  const cv::Mat expected =
+      exposeImage(motionBlur(radiance, blur_sim.scene(), config.camera.intrinsics(),
+                             blur_sim.cameraPose(t), shutter, 0),
+                  config.camera.intrinsics(), config.render, 1.0, config.seed * 1000003ULL + 3);
   EXPECT_EQ(cv::norm(blurred.image, expected, cv::NORM_INF), 0);
   // The flight pans horizontally: horizontal gradients lose energy.
   auto gradient = [](const cv::Mat& image) {

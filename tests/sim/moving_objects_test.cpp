@@ -140,7 +140,7 @@ void expectDrawnWhereItsMotionPutsIt(Simulator& sim, int id, double t1, double t
   const Eigen::Isometry3d T_WC1 = sim.cameraPose(t1), T_21 = sim.cameraPose(t2).inverse() * T_WC1;
   const Eigen::Vector3d n1 = T_WC1.linear().transpose() * f1.normal;
   const double d1 = f1.distance - f1.normal.dot(T_WC1.translation());
-  const PinholeCamera& cam = sim.config().camera;
+  const PinholeCamera& cam = sim.camera();
   Eigen::Matrix3d K;
   K << cam.fx, 0, cam.cx, 0, cam.fy, cam.cy, 0, 0, 1;
   const Eigen::Matrix3d H =

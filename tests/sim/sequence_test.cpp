@@ -94,27 +94,44 @@ TEST(Sequence, SameSeedSameBytesDifferentSeedDifferentNoise) {
 TEST(Sequence, ConfigFileDocumentsTheBuiltInDefaults) {
   const SimConfig file =
       SimConfig::load(std::string(RPVIO_SOURCE_DIR) + "/config/sim/warehouse.ini");
-  const SimConfig builtin;
-  EXPECT_EQ(file.duration, builtin.duration);
-  EXPECT_EQ(file.flight.radius, builtin.flight.radius);
-  EXPECT_EQ(file.flight.speed, builtin.flight.speed);
-  EXPECT_EQ(file.scene.character_ring_radius, builtin.scene.character_ring_radius);
-  EXPECT_EQ(file.scene.ceiling, builtin.scene.ceiling);
-  EXPECT_NEAR(file.camera.fx, builtin.camera.fx, 1e-9);
-  EXPECT_TRUE(file.T_BC.isApprox(builtin.T_BC));
-  EXPECT_EQ(file.imu.gyro_noise_density, builtin.imu.gyro_noise_density);
-  EXPECT_TRUE(file.initial_bias.accel.isApprox(builtin.initial_bias.accel));
-  EXPECT_EQ(file.render.noise_sigma, builtin.render.noise_sigma);
-  EXPECT_EQ(file.crowd.layout, builtin.crowd.layout);
-  EXPECT_EQ(file.crowd.companion_hold, builtin.crowd.companion_hold);
-  EXPECT_EQ(file.crowd.companion_close_in, builtin.crowd.companion_close_in);
-  EXPECT_EQ(file.crowd.crossing_depth_max, builtin.crowd.crossing_depth_max);
+  EXPECT_EQ(file.describe(), SimConfig().describe());
+  EXPECT_EQ(file.camera.intrinsics().fx, SimConfig().camera.intrinsics().fx);
+}
+
+TEST(SimConfig, DescribedConfigurationLoadsBackOverAnyBase) {
+  SimConfig hard = SimConfig::profile("hard");
+  hard.camera.T_BC_translation = Eigen::Vector3d(0.1, -0.02, 1.0 / 3);
+  hard.seed = 12345678901ULL;
+  test::TempDir dir;
+  test::writeText(dir.file("scene.ini"), hard.describe());
+  const SimConfig back = SimConfig::load(dir.file("scene.ini"), SimConfig::profile("paper"));
+  EXPECT_EQ(back.describe(), hard.describe());
+  EXPECT_EQ(back.crowd.layout, CrowdLayout::Flight);
+  EXPECT_EQ(back.camera.T_BC_translation, hard.camera.T_BC_translation);  // exact digits
+  EXPECT_EQ(back.seed, hard.seed);
+  EXPECT_NE(SimConfig::profile("paper").describe(), hard.describe());
+}
+
+TEST(SimConfig, BadValueNamesTheLine) {
+  test::TempDir dir;
+  for (const char* bad :
+       {"[camera]\nwidth = 640.5\n", "[sequence]\nduration = 0\n", "[camera]\nhfov_deg = 180\n",
+        "[auto_exposure]\nmin_gain = 2\nmax_gain = 1\n", "[imu]\ngyro_bias = 1 2\n",
+        "[scene]\npallet_trucks = 5\n"}) {
+    test::writeText(dir.file("scene.ini"), bad);
+    try {
+      SimConfig::load(dir.file("scene.ini"));
+      ADD_FAILURE() << "no error for " << bad;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(":line "), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(SimConfig, HardProfileChangesTheCrowdFlightAndMasksAndAFileOverridesIt) {
   const SimConfig paper = SimConfig::profile("paper"), hard = SimConfig::profile("hard");
-  EXPECT_EQ(paper.crowd.layout, "ring");
-  EXPECT_EQ(hard.crowd.layout, "flight");
+  EXPECT_EQ(paper.crowd.layout, CrowdLayout::Ring);
+  EXPECT_EQ(hard.crowd.layout, CrowdLayout::Flight);
   EXPECT_LT(hard.flight.height, paper.flight.height);
   EXPECT_TRUE(hard.mask.enabled());
   EXPECT_FALSE(paper.mask.enabled());
@@ -125,9 +142,9 @@ TEST(SimConfig, HardProfileChangesTheCrowdFlightAndMasksAndAFileOverridesIt) {
   const SimConfig over = SimConfig::load(dir.file("over.ini"), hard);
   EXPECT_EQ(over.flight.speed, 2);
   EXPECT_EQ(over.mask.split_plane_id, 0);
-  EXPECT_EQ(over.crowd.layout, "flight");
+  EXPECT_EQ(over.crowd.layout, CrowdLayout::Flight);
   EXPECT_EQ(over.mask.boundary_bleed_px, hard.mask.boundary_bleed_px);
-  EXPECT_EQ(over.camera.fx, hard.camera.fx);
+  EXPECT_EQ(over.camera.hfov_deg, hard.camera.hfov_deg);
   EXPECT_THROW(SimConfig::profile("easy"), std::invalid_argument);
 }
 
