@@ -4,7 +4,7 @@ JOBS ?= 2
 FUZZ_SECONDS ?= 60
 ASAN_CTEST_ARGS ?=
 
-.PHONY: deps build test demo test-asan test-asan-quick fuzz format clean
+.PHONY: deps build test test-slurm demo test-asan test-asan-quick fuzz format clean
 
 deps:
 	@scripts/install-deps.sh
@@ -14,7 +14,11 @@ build: deps
 	cmake --build $(BUILD_DIR) -j$(JOBS)
 
 test: build
-	cd $(BUILD_DIR) && ctest --output-on-failure -j$(JOBS)
+	cd $(BUILD_DIR) && ctest --output-on-failure -j$(JOBS) -LE slurm
+
+# rpvio-bench on a real single-node Slurm (scripts/start-slurm.sh installs and starts it; root).
+test-slurm: build
+	cd $(BUILD_DIR) && ctest --output-on-failure -L slurm
 
 demo: build
 	@scripts/demo.sh $(BUILD_DIR)

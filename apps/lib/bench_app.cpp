@@ -1,30 +1,23 @@
 #include "apps/lib/bench_app.h"
 
-#include <unistd.h>
-
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <map>
 #include <mutex>
 #include <optional>
-#include <sstream>
 #include <thread>
 
-#include "apps/lib/bench_results.h"
-#include "apps/lib/command_line.h"
-#include "apps/lib/subprocess.h"
+#include "apps/lib/bench_plan.h"
 #include "common/atomic_file.h"
 #include "common/input_error.h"
 #include "common/json_text.h"
 #include "evaluation/trajectory_metrics.h"
 #include "evaluation/trajectory_plot.h"
 #include "rawlog_io/trajectory_io.h"
-#include "sim/sequence_name.h"
 
 namespace fs = std::filesystem;
 
@@ -36,7 +29,8 @@ const char* kUsage =
     "S]\n"
     "                   [--modes vins-mono,mask-vins,rpvio-single,rpvio-multi]\n"
     "                   [--sequences static,C1,C2,C4,C6,C8] [--runs N] [--jobs J]\n"
-    "                   [--config-dir config] --out OUTDIR\n"
+    "                   [--config-dir config] [--executor local|slurm] --out OUTDIR\n"
+    "       rpvio-bench --collect OUTDIR [--resubmit-failed]\n"
     "  Runs every mode (config-dir/<mode>.ini) on every sequence DIR/<sequence>/ (seq.rawlog,\n"
     "  calib.ini, groundtruth.tum) N times, J runs at a time, evaluates them (SE(3)-aligned ATE,\n"
     "  coverage) and writes OUTDIR/results.md, OUTDIR/results.json, OUTDIR/plots/<sequence>.png\n"
@@ -47,37 +41,36 @@ const char* kUsage =
     "the\n"
     "  profile's suite (hard: also MP, MP-C4). The pipeline is deterministic: runs of a pair "
     "repeat\n"
-    "  exactly.\n";
+    "  exactly.\n"
+    "  --executor slurm: one Slurm job array for the runs (and one for --generate, which the runs\n"
+    "  wait for), at most J tasks at a time when --jobs is given; [--partition P] [--time-limit\n"
+    "  MIN] [--sbatch-arg ARG]... go to sbatch. Waits and collects, or returns after the\n"
+    "  submission with --submit-only. OUTDIR, the suite and the binaries must be on a filesystem\n"
+    "  every node shares.\n"
+    "  --collect OUTDIR: the results of the runs that have finished; names the failed or missing\n"
+    "  ones with their Slurm state and logs; --resubmit-failed runs only those again first.\n";
 
-const std::vector<std::string> kModes = {"vins-mono", "mask-vins", "rpvio-single", "rpvio-multi"};
-
-std::vector<std::string> splitList(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream in(text);
-  for (std::string item; std::getline(in, item, ',');)
-    if (!item.empty()) out.push_back(item);
-  return out;
-}
-
-void checkSequenceName(const std::string& sequence) {
-  if (!sim::parseSequenceName(sequence))
-    throw UsageError("unknown sequence '" + sequence + "' (static, C<N>, MP or MP-C<N>, e.g. C4)");
-}
-
-std::string readText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
-/// Runs `jobs` tasks at a time; `task(k)` for k in [0, count).
+/// Runs `jobs` tasks at a time; `task(k)` for k in [0, count). The first exception a task throws
+/// is rethrown once every worker has stopped (the others take no new task).
 void runParallel(size_t count, int jobs, const std::function<void(size_t)>& task) {
   std::atomic<size_t> next{0};
+  std::exception_ptr error;
+  std::mutex error_mutex;
   std::vector<std::thread> workers;
   for (int j = 0; j < std::max(1, jobs); ++j)
     workers.emplace_back([&] {
-      for (size_t k; (k = next++) < count;) task(k);
+      for (size_t k; (k = next++) < count;) {
+        try {
+          task(k);
+        } catch (...) {
+          std::lock_guard<std::mutex> lock(error_mutex);
+          if (!error) error = std::current_exception();
+          next = count;
+        }
+      }
     });
   for (auto& w : workers) w.join();
+  if (error) std::rethrow_exception(error);
 }
 
 /// One line per finished task on stderr: what finished, elapsed time and an estimate of the rest.
@@ -101,29 +94,6 @@ class Progress {
   std::chrono::steady_clock::time_point start_;
   std::mutex mutex_;
 };
-
-void generateSequences(const CommandLine& cli, const std::string& suite,
-                       const std::vector<std::string>& sequences, int jobs) {
-  const std::string sim = executableDir() + "/rpvio-sim";
-  Progress progress("simulate", sequences.size());
-  std::vector<std::string> failures(sequences.size());
-  runParallel(sequences.size(), jobs, [&](size_t k) {
-    const fs::path dir = fs::path(suite) / sequences[k];
-    fs::create_directories(dir.parent_path());
-    std::vector<std::string> argv = {sim, "--sequence", sequences[k], "--out", dir.string()};
-    for (const char* option : {"duration", "seed", "profile"})
-      if (cli.has(option)) argv.insert(argv.end(), {std::string("--") + option, cli.value(option)});
-    const std::string log = (fs::path(suite) / (sequences[k] + ".log")).string();
-    fs::remove(log);
-    const int code = runProcess(argv, log);
-    if (code != 0)
-      failures[k] =
-          sequences[k] + ": rpvio-sim exited with " + std::to_string(code) + " (log " + log + ")";
-    progress.done(sequences[k] + (code == 0 ? " written" : " FAILED"));
-  });
-  for (const auto& f : failures)
-    if (!f.empty()) throw std::runtime_error("simulation failed: " + f);
-}
 
 /// Fills the run's evaluation and timing from its output folder; the evaluation itself when there
 /// is one (for the plots).
@@ -182,93 +152,163 @@ void writePlots(const BenchSetup& setup, const std::vector<BenchRun>& runs,
   }
 }
 
-int run(int argc, char** argv) {
-  const CommandLine cli(argc, argv,
-                        {"suite", "duration", "seed", "profile", "modes", "sequences", "runs",
-                         "jobs", "config-dir", "out"},
-                        {"generate"});
-  BenchSetup setup;
-  setup.suite_dir = cli.value("suite");
-  const fs::path out = cli.value("out");
-  const std::string config_dir = cli.valueOr("config-dir", "config");
-  setup.modes = cli.has("modes") ? splitList(cli.value("modes")) : kModes;
-  const std::string profile = cli.valueOr("profile", "paper");
-  if (profile != "paper" && profile != "hard")
-    throw UsageError("--profile must be paper or hard, not '" + profile + "'");
-  setup.sequences =
-      cli.has("sequences") ? splitList(cli.value("sequences")) : sim::suiteSequences(profile);
-  setup.runs = cli.count("runs", 1);
-  setup.jobs = cli.count("jobs", 1);
-  if (setup.modes.empty() || setup.sequences.empty()) throw UsageError("no mode or no sequence");
-  for (const auto& s : setup.sequences) checkSequenceName(s);  // before any work
-  for (const auto& mode : setup.modes)
-    if (!fs::exists(fs::path(config_dir) / (mode + ".ini")))
-      throw InputError((fs::path(config_dir) / (mode + ".ini")).string(), "",
-                       "no such mode config (run from the repository root or pass --config-dir)");
+std::string evaluatedLine(const BenchRun& r) {
+  char line[256];
+  if (r.evaluated)
+    std::snprintf(line, sizeof line, "%s %s run %d: ATE %.3f m, coverage %.0f%%, %.0f s",
+                  r.sequence.c_str(), r.mode.c_str(), r.run, r.ate_rmse, 100 * r.coverage,
+                  r.wall_s);
+  else
+    std::snprintf(line, sizeof line, "%s %s run %d: %s", r.sequence.c_str(), r.mode.c_str(), r.run,
+                  r.error.c_str());
+  return line;
+}
 
-  const auto start = std::chrono::steady_clock::now();
-  if (cli.has("generate")) generateSequences(cli, setup.suite_dir, setup.sequences, setup.jobs);
+/// Runs `indices` of the plan's simulations and then its SLAM runs (simulations: all or none),
+/// here or on Slurm. Returns false when only submitted.
+bool execute(BenchPlan& plan, bool simulate, const std::vector<size_t>& slam_indices,
+             bool submit_only) {
+  if (!plan.slurm) {
+    if (simulate) {
+      Progress progress("simulate", plan.sim_tasks.size());
+      runParallel(plan.sim_tasks.size(), plan.setup.jobs, [&](size_t k) {
+        fs::create_directories(plan.setup.suite_dir);
+        const int code = runTask(plan.sim_tasks[k]);
+        progress.done(plan.sim_tasks[k].name + (code == 0 ? ": written" : ": FAILED"));
+      });
+    }
+  } else {
+    std::string sim_job;
+    if (simulate) {
+      fs::create_directories(plan.setup.suite_dir);
+      const auto all = allIndices(plan.sim_tasks.size());
+      sim_job = submitArray(plan.slurm_options, manifestPath(plan, "rpvio-sim"), all, "rpvio-sim",
+                            (plan.out / "bench" / "logs").string());
+      recordJob(plan, "rpvio-sim", sim_job, all);
+    }
+    const std::string slam_job =
+        submitArray(plan.slurm_options, manifestPath(plan, "rpvio-slam"), slam_indices,
+                    "rpvio-slam", (plan.out / "bench" / "logs").string(), sim_job);
+    recordJob(plan, "rpvio-slam", slam_job, slam_indices);
+    std::fprintf(stderr, "rpvio-bench: submitted %s%s job %s (%zu runs)\n",
+                 sim_job.empty() ? "" : ("simulation job " + sim_job + " and ").c_str(), "SLAM",
+                 slam_job.c_str(), slam_indices.size());
+    if (submit_only) return false;
+    if (simulate) waitForJob(plan.slurm_options, sim_job, "simulate", plan.sim_tasks.size());
+    if (!simulate || unfinished(plan.sim_tasks, allIndices(plan.sim_tasks.size())).empty())
+      waitForJob(plan.slurm_options, slam_job, "SLAM runs", slam_indices.size());
+  }
+  std::string failures;
+  if (simulate)
+    for (size_t k : unfinished(plan.sim_tasks, allIndices(plan.sim_tasks.size())))
+      failures += "\n  " + taskReport(plan, "rpvio-sim", plan.sim_tasks, k);
+  if (!failures.empty()) throw std::runtime_error("simulation failed:" + failures);
+  if (!plan.slurm) {
+    Progress progress("run", slam_indices.size());
+    runParallel(slam_indices.size(), plan.setup.jobs, [&](size_t i) {
+      const size_t k = slam_indices[i];
+      runTask(plan.slam_tasks[k]);
+      BenchRun r = plan.runs[k];
+      const auto status = readTaskStatus(plan.slam_tasks[k]);
+      r.exit_code = status ? status->exit_code : -1;
+      r.wall_s = status ? status->wall_s : 0;
+      evaluateRun(
+          r, readTum((fs::path(plan.setup.suite_dir) / r.sequence / "groundtruth.tum").string()));
+      progress.done(evaluatedLine(r));
+    });
+  }
+  return true;
+}
+
+/// The report of every run that has finished; names the others on stderr.
+int collect(BenchPlan& plan, double wall_s) {
+  BenchSetup& setup = plan.setup;
   std::map<std::string, Trajectory> gts;
   for (const auto& s : setup.sequences) {
     const fs::path dir = fs::path(setup.suite_dir) / s;
-    for (const char* file : {"seq.rawlog", "calib.ini", "groundtruth.tum"})
-      if (!fs::exists(dir / file))
-        throw InputError((dir / file).string(), "",
-                         "missing (generate the suite with --generate or rpvio-sim --suite)");
     gts[s] = readTum((dir / "groundtruth.tum").string());
     setup.dynamic_fraction[s] =
         fs::exists(dir / "sequence.json")
-            ? jsonNumber(readText(dir / "sequence.json"), "dynamic_fraction_median")
+            ? jsonNumber(readText((dir / "sequence.json").string()), "dynamic_fraction_median")
             : NAN;
   }
-
-  std::vector<BenchRun> runs;
-  for (const auto& s : setup.sequences)
-    for (const auto& mode : setup.modes)
-      for (int k = 0; k < setup.runs; ++k) {
-        BenchRun r;
-        r.sequence = s;
-        r.mode = mode;
-        r.run = k;
-        r.dir = (out / "runs" / s / mode / ("run" + std::to_string(k))).string();
-        runs.push_back(r);
-      }
-  const std::string slam = executableDir() + "/rpvio-slam";
-  Progress progress("run", runs.size());
-  std::vector<std::optional<eval::EvalResult>> first_runs(runs.size());  // kept for the plots
-  runParallel(runs.size(), setup.jobs, [&](size_t k) {
-    BenchRun& r = runs[k];
-    const fs::path seq = fs::path(setup.suite_dir) / r.sequence;
-    fs::remove_all(r.dir);
-    fs::create_directories(r.dir);
-    const auto t0 = std::chrono::steady_clock::now();
-    r.exit_code = runProcess({slam, "--config", (fs::path(config_dir) / (r.mode + ".ini")).string(),
-                              "--calib", (seq / "calib.ini").string(), "--rawlog",
-                              (seq / "seq.rawlog").string(), "--out", r.dir, "--quiet"},
-                             (fs::path(r.dir) / "log.txt").string());
-    r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::vector<std::optional<eval::EvalResult>> first_runs(plan.runs.size());  // for the plots
+  for (size_t k = 0; k < plan.runs.size(); ++k) {
+    BenchRun& r = plan.runs[k];
+    const auto status = readTaskStatus(plan.slam_tasks[k]);
+    r.exit_code = status ? status->exit_code : -1;
+    r.wall_s = status ? status->wall_s : 0;
     auto evaluation = evaluateRun(r, gts.at(r.sequence));
+    if (!status) r.error = "did not finish";
     if (r.run == 0) first_runs[k] = std::move(evaluation);
-    char line[256];
-    if (r.evaluated)
-      std::snprintf(line, sizeof line, "%s %s run %d: ATE %.3f m, coverage %.0f%%, %.0f s",
-                    r.sequence.c_str(), r.mode.c_str(), r.run, r.ate_rmse, 100 * r.coverage,
-                    r.wall_s);
-    else
-      std::snprintf(line, sizeof line, "%s %s run %d: %s", r.sequence.c_str(), r.mode.c_str(),
-                    r.run, r.error.c_str());
-    progress.done(line);
-  });
-  setup.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
-  writePlots(setup, runs, first_runs, gts, out);
-  writeFileAtomically((out / "results.json").string(),
-                      [&](std::ostream& s) { s << resultsJson(setup, runs); });
-  const std::string markdown = resultsMarkdown(setup, runs);
-  writeFileAtomically((out / "results.md").string(), [&](std::ostream& s) { s << markdown; });
-  std::printf("%s\nresults: %s, %s; plots in %s\n", markdown.c_str(), (out / "results.md").c_str(),
-              (out / "results.json").c_str(), (out / "plots").c_str());
+  }
+  const auto failed = unfinished(plan.slam_tasks, allIndices(plan.slam_tasks.size()));
+  if (!failed.empty()) {
+    std::fprintf(stderr, "rpvio-bench: %zu of %zu runs failed or did not finish:\n", failed.size(),
+                 plan.slam_tasks.size());
+    for (size_t k : failed)
+      std::fprintf(stderr, "  %s\n", taskReport(plan, "rpvio-slam", plan.slam_tasks, k).c_str());
+    std::fprintf(stderr, "  to run only those again: rpvio-bench --collect %s --resubmit-failed\n",
+                 plan.out.c_str());
+  }
+  setup.wall_s = wall_s;
+  writePlots(setup, plan.runs, first_runs, gts, plan.out);
+  writeFileAtomically((plan.out / "results.json").string(),
+                      [&](std::ostream& s) { s << resultsJson(setup, plan.runs); });
+  const std::string markdown = resultsMarkdown(setup, plan.runs);
+  writeFileAtomically((plan.out / "results.md").string(), [&](std::ostream& s) { s << markdown; });
+  std::printf("%s\nresults: %s, %s; plots in %s\n", markdown.c_str(),
+              (plan.out / "results.md").c_str(), (plan.out / "results.json").c_str(),
+              (plan.out / "plots").c_str());
   return 0;
+}
+
+void checkSuite(const BenchSetup& setup) {
+  for (const auto& s : setup.sequences)
+    for (const char* file : {"seq.rawlog", "calib.ini", "groundtruth.tum"}) {
+      const fs::path path = fs::path(setup.suite_dir) / s / file;
+      if (!fs::exists(path))
+        throw InputError(path.string(), "",
+                         "missing (generate the suite with --generate or rpvio-sim --suite)");
+    }
+}
+
+int run(int argc, char** argv) {
+  const auto start = std::chrono::steady_clock::now();
+  auto elapsed = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  const CommandLine cli(argc, argv, kBenchOptions, kBenchFlags);
+  if (cli.has("run-task")) {  // one task of a Slurm array
+    const auto tasks = readManifest(cli.value("run-task"));
+    const double index = cli.number("index", -1);
+    if (!(index >= 0 && index < static_cast<double>(tasks.size())) || index != std::floor(index))
+      throw UsageError("--index must name a line of " + cli.value("run-task"));
+    return runTask(tasks[static_cast<size_t>(index)]);
+  }
+  if (cli.has("collect")) {  // the saved plan; options given now take precedence
+    BenchPlan plan =
+        loadPlan(cli.value("collect"), std::vector<std::string>(argv + 1, argv + argc));
+    if (cli.has("resubmit-failed")) {
+      const auto failed = unfinished(plan.slam_tasks, allIndices(plan.slam_tasks.size()));
+      std::fprintf(stderr, "rpvio-bench: running %zu failed or unfinished run(s) again\n",
+                   failed.size());
+      if (!failed.empty() && !execute(plan, false, failed, cli.has("submit-only"))) return 0;
+    }
+    return collect(plan, elapsed());
+  }
+
+  BenchPlan plan = planFrom(cli);
+  const bool generate = cli.has("generate");
+  if (!generate) checkSuite(plan.setup);
+  savePlan(cli, plan);
+  if (!execute(plan, generate, allIndices(plan.slam_tasks.size()), cli.has("submit-only"))) {
+    std::printf("submitted; when the jobs have finished: rpvio-bench --collect %s\n",
+                plan.out.c_str());
+    return 0;
+  }
+  checkSuite(plan.setup);
+  return collect(plan, elapsed());
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <stdexcept>
 
 extern char** environ;
@@ -24,7 +25,7 @@ int runProcess(const std::vector<std::string>& argv, const std::string& log_path
   for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
   pid_t pid = 0;
-  const int error = posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ);
+  const int error = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   if (error != 0) throw std::runtime_error("cannot start " + argv[0] + ": " + std::strerror(error));
   int status = 0;
@@ -33,6 +34,26 @@ int runProcess(const std::vector<std::string>& argv, const std::string& log_path
       throw std::runtime_error("waiting for " + argv[0] + ": " + std::strerror(errno));
   if (WIFSIGNALED(status)) return 128 + WTERMSIG(status);
   return WEXITSTATUS(status);
+}
+
+int runProcessForOutput(const std::vector<std::string>& argv, std::string& output) {
+  char path[] = "/tmp/rpvio-output-XXXXXX";
+  const int fd = mkstemp(path);
+  if (fd < 0)
+    throw std::runtime_error(std::string("cannot create a temporary file: ") +
+                             std::strerror(errno));
+  close(fd);
+  int code = 0;
+  try {
+    code = runProcess(argv, path);
+  } catch (...) {
+    std::filesystem::remove(path);
+    throw;
+  }
+  std::ifstream in(path, std::ios::binary);
+  output.assign(std::istreambuf_iterator<char>(in), {});
+  std::filesystem::remove(path);
+  return code;
 }
 
 std::string executableDir() {
