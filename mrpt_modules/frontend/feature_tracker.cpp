@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>  // before OpenCV's Eigen header, which needs it
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <opencv2/core/eigen.hpp>
@@ -35,6 +36,17 @@ std::optional<cv::Matx33d> planeImageMotion(const std::vector<cv::Point2f>& from
   cv::eigen2cv(*H, motion);
   return motion;
 }
+
+/// Which labels the mask has at least one pixel of.
+std::array<bool, 256> labelsIn(const cv::Mat& mask) {
+  std::array<bool, 256> labelled{};
+  for (int v = 0; v < mask.rows; ++v) {
+    const uint8_t* row = mask.ptr<uint8_t>(v);
+    for (int u = 0; u < mask.cols; ++u) labelled[row[u]] = true;
+  }
+  return labelled;
+}
+
 }  // namespace
 
 void TrackerOptions::validate(const OptionsLoader& loader) const {
@@ -89,15 +101,22 @@ std::vector<FeatureTracker::Track> FeatureTracker::propagate(const Pyramid& pyra
   cv::calcOpticalFlowPyrLK(pyramid, previous_pyramid_, to, back, back_status, cv::noArray(), window,
                            0, stop, cv::OPTFLOW_USE_INITIAL_FLOW, options_.klt_min_eigenvalue);
   const cv::Rect inside(1, 1, mask.cols - 2, mask.rows - 2);
+  const std::array<bool, 256> labelled =
+      options_.use_masks ? labelsIn(mask) : std::array<bool, 256>{};
   for (size_t i = 0; i < tracks_.size(); ++i) {
     if (!status[i] || !back_status[i] || !inside.contains(to[i])) continue;
     if (cv::norm(back[i] - from[i]) > options_.max_forward_backward_px) continue;
-    // The point must still lie on its own plane in the new mask, away from other surfaces.
+    Track tr = tracks_[i];
+    // The point must still lie on its own plane in the new mask, away from other surfaces; or
+    // its plane is missing from the mask, for a few frames at most.
     if (options_.use_masks) {
       const cv::Point at(cvRound(to[i].x), cvRound(to[i].y));
-      if (mask.at<uint8_t>(at) != tracks_[i].plane_id || !trackable_.at<uint8_t>(at)) continue;
+      tr.frames_plane_missed = labelled[tr.plane_id] ? 0 : tr.frames_plane_missed + 1;
+      const bool on_plane = mask.at<uint8_t>(at) == tr.plane_id && trackable_.at<uint8_t>(at);
+      if (!on_plane &&
+          !(tr.frames_plane_missed > 0 && tr.frames_plane_missed <= options_.missed_plane_frames))
+        continue;
     }
-    Track tr = tracks_[i];
     tr.from = tr.pixel;
     tr.pixel = to[i];
     ++tr.length;

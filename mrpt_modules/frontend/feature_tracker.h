@@ -36,6 +36,10 @@ struct TrackerOptions {
   // real sequences (docs/notes/2026-11-26-frontend-timing.md).
   int klt_levels = 2;
   double max_forward_backward_px = 0.5;  // px
+  // A plane absent from the whole mask (a segmentation network missed it) keeps its tracks for
+  // this many frames, on their own forward-backward, anchor and per-plane RANSAC checks; 0: they
+  // end with the plane's label, as every track leaving its label does.
+  int missed_plane_frames = 1;
   // KLT's minimum eigenvalue (OpenCV's normalization: the smaller eigenvalue of the window's
   // gradient matrix over its pixel count, gradients in grey levels per px / 32): a track ends when
   // its full-resolution window falls below it (a single edge: the aperture problem); coarse levels
@@ -67,6 +71,7 @@ struct TrackerOptions {
     RPVIO_OPTION(v, klt_window);
     RPVIO_OPTION(v, klt_levels);
     RPVIO_OPTION(v, max_forward_backward_px);
+    RPVIO_OPTION(v, missed_plane_frames);
     RPVIO_OPTION(v, klt_min_eigenvalue);
     RPVIO_OPTION(v, clahe);
     RPVIO_OPTION(v, ransac_threshold_px);
@@ -104,6 +109,7 @@ class FeatureTracker {
     cv::Point2f anchor_pixel;  // where it was born, in the pixels of `anchor`
     cv::Point2f from;          // pixel in the previous frame
     cv::Matx22d warp = cv::Matx22d::eye();  // offsets around the birth pixel → current offsets
+    int frames_plane_missed = 0;  // consecutive frames its plane was absent from the mask
   };
   using PlaneHomographies = std::map<int, cv::Matx33d>;  // plane → previous-to-current (pixels)
   void warnOnce(const std::string& message);
