@@ -3,25 +3,76 @@
 #include <cstdio>
 #include <iostream>
 
+#include <filesystem>
+#include <stdexcept>
 #include "apps/lib/command_line.h"
+
+#include "rawlog_io/calibration.h"
 #include "rawlog_io/euroc_import.h"
 #include "rawlog_io/rawlog_summary.h"
+#include "rosbag_io/bag_import.h"
 
 namespace {
+
+rpvio::BagImportOptions bagOptions(const rpvio::apps::CommandLine& cli) {
+  using namespace rpvio;
+  BagPreset preset;
+  try {
+    preset = bagPreset(cli.value("preset"));
+  } catch (const std::invalid_argument& e) {
+    throw apps::UsageError(std::string("--preset: ") + e.what());
+  }
+  BagImportOptions opt;
+  opt.bag_path = cli.value("bag");
+  opt.output_rawlog = cli.value("out");
+  opt.topics.image = cli.valueOr("image-topic", preset.topics.image);
+  opt.topics.imu = cli.valueOr("imu-topic", preset.topics.imu);
+  opt.topics.mask = cli.valueOr("mask-topic", preset.topics.mask);
+  if (opt.topics.image.empty() || opt.topics.imu.empty())
+    throw apps::UsageError(
+        "the preset names no image or IMU topic: give --image-topic, --imu-topic");
+  if (cli.has("calib"))
+    opt.calibration = loadCalibration(cli.value("calib"));
+  else if (preset.calibration)
+    opt.calibration = *preset.calibration;
+  else
+    throw apps::UsageError("the preset has no calibration: give --calib calib.ini");
+  opt.imu_rate_hz = cli.number("imu-rate", preset.imu_rate_hz);
+  const auto beside =
+      std::filesystem::path(opt.bag_path).parent_path() / preset.groundtruth_beside_bag;
+  if (cli.has("gt"))
+    opt.groundtruth_file = cli.value("gt");
+  else if (!preset.groundtruth_beside_bag.empty() && std::filesystem::is_regular_file(beside))
+    opt.groundtruth_file = beside.string();
+  return opt;
+}
+
 const char* kUsage =
     "usage: rpvio-import euroc --mav0 DIR [--gt FILE] [--masks DIR] --out FILE.rawlog\n"
     "  Converts an EuRoC (ASL) folder: cam0 images -> CAM0, imu0 -> IMU, optional masks folder\n"
     "  (PNG named like the images) -> PLANE_MASK, optional ground truth (TUM or EuRoC CSV) ->\n"
     "  GROUND_TRUTH; writes calib.ini beside the rawlog.\n"
+    "usage: rpvio-import rosbag --bag FILE.bag --preset rpvio-sim|generic [--image-topic T]\n"
+    "                    [--imu-topic T] [--mask-topic T] [--calib calib.ini] [--imu-rate HZ]\n"
+    "                    [--gt FILE.tum] --out FILE.rawlog\n"
+    "  Converts a ROS1 bag (no ROS needed): image topic -> CAM0 (mono8, rgb8, bgr8, rgba8, bgra8,\n"
+    "  mono16), mask topic -> PLANE_MASK (mono8 plane ids, paired by identical stamp), IMU topic\n"
+    "  (decimated to --imu-rate by timestamp) -> IMU, TUM ground truth -> GROUND_TRUTH; header\n"
+    "  stamps; writes calib.ini beside the rawlog. The preset gives topics, calibration and IMU\n"
+    "  rate (rpvio-sim: /image, /mask, /imu at 200 Hz, groundtruth.txt beside the bag); options\n"
+    "  override it; generic needs every topic and --calib.\n"
     "usage: rpvio-import verify --rawlog FILE\n"
     "  Streams a rawlog, loading every image and IMU sample, and prints the counts per label.\n"
     "Exit code 2 on bad input, with a one-line message naming the file and position.\n";
-}
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace rpvio;
   return apps::runApp("rpvio-import", kUsage, [&] {
-    const apps::CommandLine cli(argc, argv, {"mav0", "gt", "masks", "out", "rawlog"}, {});
+    const apps::CommandLine cli(argc, argv,
+                                {"mav0", "gt", "masks", "out", "rawlog", "bag", "preset",
+                                 "image-topic", "imu-topic", "mask-topic", "calib", "imu-rate"},
+                                {});
     const std::string command = cli.positional().size() == 1 ? cli.positional()[0] : "";
     if (command == "verify") {
       const auto summary = summarizeRawlog(cli.value("rawlog"));
@@ -31,13 +82,29 @@ int main(int argc, char** argv) {
         std::printf("  %-14s %zu\n", label.c_str(), count);
       return 0;
     }
-    if (command != "euroc") throw apps::UsageError("expected the command 'euroc' or 'verify'");
+    const bool terminal = isatty(STDERR_FILENO);
+    if (command == "rosbag") {
+      const BagImportOptions opt = bagOptions(cli);
+      const BagImportCounts counts = importBag(opt, [&](size_t n) {
+        if (terminal) std::fprintf(stderr, "\rimporting: %zu images and masks", n);
+      });
+      if (terminal) std::fprintf(stderr, "\n");
+      std::printf("wrote %s: %zu CAM0, %zu PLANE_MASK, %zu IMU, %zu GROUND_TRUTH%s\n",
+                  opt.output_rawlog.c_str(), counts.images, counts.masks, counts.imu,
+                  counts.groundtruth,
+                  counts.unpaired_masks ? ("; " + std::to_string(counts.unpaired_masks) +
+                                           " masks without an image of the same stamp dropped")
+                                              .c_str()
+                                        : "");
+      return 0;
+    }
+    if (command != "euroc")
+      throw apps::UsageError("expected the command 'euroc', 'rosbag' or 'verify'");
     EurocImportOptions opt;
     opt.mav0_dir = cli.value("mav0");
     opt.output_rawlog = cli.value("out");
     opt.groundtruth_file = cli.valueOr("gt", "");
     opt.masks_dir = cli.valueOr("masks", "");
-    const bool terminal = isatty(STDERR_FILENO);
     const auto counts = importEuroc(opt, [&](size_t done, size_t total) {
       if (terminal) std::fprintf(stderr, "\rimporting %zu/%zu entries", done, total);
     });

@@ -1,6 +1,6 @@
 #!/bin/sh
 # The dependency rule (docs/architecture.md): a folder includes only its own headers and those of
-# the layers below it. Lowest first: common → rawlog_io, sim → planes_map → mrpt_modules →
+# the layers below it. Lowest first: common → rawlog_io → rosbag_io, sim → planes_map → mrpt_modules →
 # evaluation → apps. Prints every violation as file:line and exits 1 if there is one.
 # Usage: scripts/check-layers.sh [repository root]
 set -eu
@@ -10,6 +10,7 @@ cd "${1:-$(dirname "$0")/..}"
 RULES="
 common: common/
 rawlog_io: common/ rawlog_io/
+rosbag_io: common/ rawlog_io/ rosbag_io/
 sim: common/ rawlog_io/ sim/
 planes_map: common/ planes_map/
 mrpt_modules/imu: common/ mrpt_modules/imu/

@@ -109,7 +109,7 @@ class FeatureTracker {
     cv::Point2f anchor_pixel;  // where it was born, in the pixels of `anchor`
     cv::Point2f from;          // pixel in the previous frame
     cv::Matx22d warp = cv::Matx22d::eye();  // offsets around the birth pixel → current offsets
-    int frames_plane_missed = 0;  // consecutive frames its plane was absent from the mask
+    int frames_plane_missed = 0;            // consecutive frames its plane was absent from the mask
   };
   using PlaneHomographies = std::map<int, cv::Matx33d>;  // plane → previous-to-current (pixels)
   void warnOnce(const std::string& message);

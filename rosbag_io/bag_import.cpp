@@ -1,0 +1,227 @@
+#include "rosbag_io/bag_import.h"
+
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+#include <sensor_msgs/Image.h>
+#include <sensor_msgs/Imu.h>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <stdexcept>
+
+#include "common/input_error.h"
+#include "rawlog_io/calibration.h"
+#include "rawlog_io/rawlog_writer.h"
+#include "rawlog_io/trajectory_io.h"
+#include "rosbag_io/ros_image.h"
+#include "rosbag_io/stamps.h"
+
+namespace fs = std::filesystem;
+
+namespace rpvio {
+namespace {
+
+// Images wait at most this many later images for their mask (in record order) before they are
+// written without one.
+constexpr size_t kMaxWaitingImages = 8;
+
+std::string timeText(const ros::Time& t) {
+  char text[48];
+  std::snprintf(text, sizeof text, "t=%u.%09u s", t.sec, t.nsec);
+  return text;
+}
+
+/// Every topic of the bag with its message type, for error messages.
+std::string topicList(const rosbag::Bag& bag) {
+  rosbag::View view(bag);
+  std::string list;
+  for (const rosbag::ConnectionInfo* c : view.getConnections())
+    if (list.find(c->topic + " (") == std::string::npos)
+      list += (list.empty() ? "" : ", ") + c->topic + " (" + c->datatype + ")";
+  return list.empty() ? "no topics" : list;
+}
+
+void requireTopic(const rosbag::Bag& bag, const std::string& path, const std::string& topic,
+                  const std::string& type) {
+  rosbag::View view(bag, rosbag::TopicQuery(topic));
+  if (view.size() == 0)
+    throw InputError(path, "", "no messages on " + topic + " (the bag has: " + topicList(bag) + ")");
+  for (const rosbag::ConnectionInfo* c : view.getConnections())
+    if (c->datatype != type)
+      throw InputError(path, "", topic + " carries " + c->datatype + ", not " + type);
+}
+
+/// The IMU samples, decimated to `rate_hz` by timestamp: the first sample at or after each point
+/// of the grid t0 + k / rate is kept (a thousandth of a period early counts as on it: stamp
+/// rounding).
+std::vector<ImuSample> readImu(const rosbag::Bag& bag, const std::string& path,
+                               const std::string& topic, double rate_hz) {
+  std::vector<ImuSample> samples;
+  double last_t = -INFINITY, t0 = 0;
+  long long last_slot = -1;
+  size_t index = 0;
+  for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TopicQuery(topic))) {
+    const std::string where = topic + " message " + std::to_string(++index);
+    const auto msg = m.instantiate<sensor_msgs::Imu>();
+    if (!msg) throw InputError(path, where, "not a sensor_msgs/Imu");
+    const double t = rawlogSeconds(msg->header.stamp);
+    if (!(t > last_t))
+      throw InputError(path, where,
+                       "stamp " + timeText(msg->header.stamp) + " is not after the previous one");
+    last_t = t;
+    if (samples.empty()) t0 = t;
+    if (rate_hz > 0) {
+      const auto slot = static_cast<long long>(std::floor((t - t0) * rate_hz + 1e-3));
+      if (slot <= last_slot) continue;
+      last_slot = slot;
+    }
+    ImuSample s;
+    s.t = t;
+    s.gyro = {msg->angular_velocity.x, msg->angular_velocity.y, msg->angular_velocity.z};
+    s.accel = {msg->linear_acceleration.x, msg->linear_acceleration.y,
+               msg->linear_acceleration.z};
+    if (!s.gyro.allFinite() || !s.accel.allFinite())
+      throw InputError(path, where, "angular velocity or acceleration is not finite");
+    samples.push_back(s);
+  }
+  return samples;
+}
+
+}  // namespace
+
+BagPreset bagPreset(const std::string& name) {
+  BagPreset preset;
+  if (name == "generic") return preset;
+  if (name != "rpvio-sim")
+    throw std::invalid_argument("unknown preset '" + name + "' (rpvio-sim or generic)");
+  preset.topics = {"/image", "/imu", "/mask"};
+  Calibration c;
+  c.camera.width = 640;
+  c.camera.height = 480;
+  c.camera.fx = c.camera.fy = 320;
+  c.camera.cx = 320;
+  c.camera.cy = 240;
+  c.T_BC.linear() << 0, 0, 1,  //
+      1, 0, 0,                 //
+      0, 1, 0;
+  c.T_BC.translation() = Eigen::Vector3d(0.5, 0, 0);
+  c.time_offset = -0.0308;  // s, t_imu = t_cam + offset
+  preset.calibration = c;   // IMU noise: ImuNoise's defaults (sensor_types.h)
+  preset.imu_rate_hz = 200;
+  preset.groundtruth_beside_bag = "groundtruth.txt";
+  return preset;
+}
+
+BagImportCounts importBag(const BagImportOptions& opt,
+                          const std::function<void(size_t)>& progress) {
+  const std::string& path = opt.bag_path;
+  if (!fs::is_regular_file(path)) throw InputError(path, "", "file not found");
+  const fs::path out(opt.output_rawlog);
+  const fs::path out_dir = out.has_parent_path() ? out.parent_path() : fs::path(".");
+  if (!fs::is_directory(out_dir)) throw InputError(opt.output_rawlog, "", "output folder not found");
+  BagImportCounts counts;
+  try {
+    rosbag::Bag bag(path, rosbag::bagmode::Read);
+    requireTopic(bag, path, opt.topics.image, "sensor_msgs/Image");
+    requireTopic(bag, path, opt.topics.imu, "sensor_msgs/Imu");
+    if (!opt.topics.mask.empty()) requireTopic(bag, path, opt.topics.mask, "sensor_msgs/Image");
+    const std::vector<ImuSample> imu = readImu(bag, path, opt.topics.imu, opt.imu_rate_hz);
+    const Trajectory gt =
+        opt.groundtruth_file.empty() ? Trajectory{} : readTum(opt.groundtruth_file);
+
+    RawlogWriter writer(opt.output_rawlog, opt.calibration);
+    size_t next_imu = 0, next_gt = 0;
+    // IMU and ground truth up to t (at equal stamps IMU first, then ground truth, then images).
+    auto writeSensorsUntil = [&](double t) {
+      for (;;) {
+        const double t_imu = next_imu < imu.size() ? imu[next_imu].t : INFINITY;
+        const double t_gt = next_gt < gt.size() ? gt[next_gt].t : INFINITY;
+        if ((next_imu == imu.size() && next_gt == gt.size()) || std::min(t_imu, t_gt) > t) return;
+        if (t_imu <= t_gt) {
+          writer.addImu(imu[next_imu++]);
+          ++counts.imu;
+        } else {
+          writer.addGroundTruth(gt[next_gt++]);
+          ++counts.groundtruth;
+        }
+      }
+    };
+    double last_image_t = -INFINITY;
+    auto writeImage = [&](const ros::Time& stamp, const cv::Mat& image, const cv::Mat* mask) {
+      const double t = rawlogSeconds(stamp);
+      if (t < last_image_t)
+        throw InputError(path, opt.topics.image + " at " + timeText(stamp),
+                         "image stamps go backwards (the previous one is later)");
+      last_image_t = t;
+      writeSensorsUntil(t);
+      writer.addImage(t, image);
+      ++counts.images;
+      if (!mask) return;
+      if (mask->size() != image.size())
+        throw InputError(path, opt.topics.mask + " at " + timeText(stamp),
+                         "mask " + std::to_string(mask->cols) + "x" + std::to_string(mask->rows) +
+                             " differs from its image " + std::to_string(image.cols) + "x" +
+                             std::to_string(image.rows));
+      writer.addMask(t, *mask);
+      ++counts.masks;
+    };
+    // Images and masks in record order, paired by identical header stamp.
+    std::map<ros::Time, cv::Mat> waiting_images, waiting_masks;
+    auto writeImagesBefore = [&](const ros::Time& stamp) {
+      while (!waiting_images.empty() && waiting_images.begin()->first < stamp) {
+        writeImage(waiting_images.begin()->first, waiting_images.begin()->second, nullptr);
+        waiting_images.erase(waiting_images.begin());
+      }
+    };
+    std::vector<std::string> topics = {opt.topics.image};
+    if (!opt.topics.mask.empty()) topics.push_back(opt.topics.mask);
+    size_t done = 0, image_index = 0, mask_index = 0;
+    for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TopicQuery(topics))) {
+      const bool is_image = m.getTopic() == opt.topics.image;
+      const std::string where =
+          m.getTopic() + " message " + std::to_string(is_image ? ++image_index : ++mask_index);
+      const auto msg = m.instantiate<sensor_msgs::Image>();
+      if (!msg) throw InputError(path, where, "not a sensor_msgs/Image");
+      const ros::Time stamp = msg->header.stamp;
+      if (is_image) {
+        cv::Mat image = grayFromRosImage(*msg, path, where);
+        if (opt.topics.mask.empty()) {
+          writeImage(stamp, image, nullptr);
+        } else if (const auto mask = waiting_masks.find(stamp); mask != waiting_masks.end()) {
+          writeImagesBefore(stamp);
+          writeImage(stamp, image, &mask->second);
+          waiting_masks.erase(mask);
+        } else {
+          waiting_images[stamp] = image;
+        }
+      } else {
+        cv::Mat mask = labelsFromRosImage(*msg, path, where);
+        if (const auto image = waiting_images.find(stamp); image != waiting_images.end()) {
+          writeImagesBefore(stamp);
+          writeImage(stamp, image->second, &mask);
+          waiting_images.erase(stamp);
+        } else {
+          waiting_masks[stamp] = mask;
+        }
+      }
+      while (waiting_images.size() > kMaxWaitingImages) writeImagesBefore(
+          std::next(waiting_images.begin())->first);
+      while (waiting_masks.size() > kMaxWaitingImages) {
+        waiting_masks.erase(waiting_masks.begin());
+        ++counts.unpaired_masks;
+      }
+      if (progress && ++done % 500 == 0) progress(done);
+    }
+    writeImagesBefore(ros::TIME_MAX);
+    counts.unpaired_masks += waiting_masks.size();
+    writeSensorsUntil(INFINITY);
+    saveCalibration((out_dir / "calib.ini").string(), opt.calibration);
+    writer.close();
+  } catch (const rosbag::BagException& e) {
+    throw InputError(path, "", std::string("not a readable ROS1 bag: ") + e.what());
+  }
+  return counts;
+}
+
+}  // namespace rpvio

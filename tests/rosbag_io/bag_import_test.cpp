@@ -1,0 +1,207 @@
+// importBag on small bags written here with the same library: encodings, mask pairing, IMU
+// decimation, exact stamps, and bad input (one error naming the bag and the message, no output).
+#include <gtest/gtest.h>
+#include <rosbag/bag.h>
+#include <sensor_msgs/Image.h>
+#include <sensor_msgs/Imu.h>
+
+#include <filesystem>
+#include <opencv2/imgproc.hpp>
+
+#include "common/input_error.h"
+#include "rawlog_io/rawlog_reader.h"
+#include "rawlog_io/rawlog_summary.h"
+#include "rosbag_io/bag_import.h"
+#include "rosbag_io/stamps.h"
+#include "tests/test_util.h"
+
+namespace rpvio {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kStart = 1600000000.0;  // s, a real bag's epoch stamps
+
+sensor_msgs::Image colourImage(const std::string& encoding, const ros::Time& stamp,
+                               const cv::Scalar& rgb, int width = 64, int height = 48) {
+  int type = CV_8UC3;
+  cv::Scalar value = rgb;
+  if (encoding == "bgr8") value = cv::Scalar(rgb[2], rgb[1], rgb[0]);
+  if (encoding == "rgba8") type = CV_8UC4, value = cv::Scalar(rgb[0], rgb[1], rgb[2], 255);
+  if (encoding == "bgra8") type = CV_8UC4, value = cv::Scalar(rgb[2], rgb[1], rgb[0], 255);
+  if (encoding == "mono16") type = CV_16UC1, value = cv::Scalar(rgb[0] * 256);
+  if (encoding == "mono8" || encoding == "yuv422") type = CV_8UC1;
+  const cv::Mat pixels(height, width, type, value);
+  sensor_msgs::Image msg;
+  msg.header.stamp = stamp;
+  msg.width = static_cast<uint32_t>(width);
+  msg.height = static_cast<uint32_t>(height);
+  msg.encoding = encoding;
+  msg.step = static_cast<uint32_t>(pixels.step);
+  msg.data.assign(pixels.data, pixels.data + pixels.total() * pixels.elemSize());
+  return msg;
+}
+
+sensor_msgs::Imu imuMessage(const ros::Time& stamp, double gyro_x) {
+  sensor_msgs::Imu msg;
+  msg.header.stamp = stamp;
+  msg.angular_velocity.x = gyro_x;
+  msg.linear_acceleration.z = 9.81;
+  return msg;
+}
+
+Calibration calibration() {
+  Calibration c;
+  c.camera.width = 64;
+  c.camera.height = 48;
+  c.camera.fx = c.camera.fy = 50;
+  c.camera.cx = 31.5;
+  c.camera.cy = 23.5;
+  return c;
+}
+
+BagImportOptions options(const test::TempDir& dir) {
+  BagImportOptions opt;
+  opt.bag_path = dir.file("in.bag");
+  opt.output_rawlog = dir.file("out.rawlog");
+  opt.topics = {"/cam0/image_raw", "/imu0", "/cam0/planes"};
+  opt.calibration = calibration();
+  opt.imu_rate_hz = 200;
+  return opt;
+}
+
+/// 1 s of IMU at 1 kHz and five images at 5 Hz in `encoding`, each with its mask but the last;
+/// one mask without an image; record times shuffled a little against the stamps.
+void writeBag(const std::string& path, const std::string& encoding,
+              rosbag::compression::CompressionType compression) {
+  rosbag::Bag bag(path, rosbag::bagmode::Write);
+  bag.setCompression(compression);
+  for (int k = 0; k <= 1000; ++k) {
+    const ros::Time stamp(kStart + k * 0.001);
+    bag.write("/imu0", stamp, imuMessage(stamp, k * 0.001));
+  }
+  for (int k = 0; k < 5; ++k) {
+    const ros::Time stamp(kStart + 0.1 + k * 0.2);
+    const ros::Time recorded = stamp + ros::Duration(0.03);
+    if (k < 4) {  // the mask first, as some recorders do
+      bag.write("/cam0/planes", recorded, colourImage("mono8", stamp, cv::Scalar(k + 1)));
+    }
+    bag.write("/cam0/image_raw", recorded + ros::Duration(0.001),
+              colourImage(encoding, stamp, cv::Scalar(200, 100, 50)));
+  }
+  const ros::Time lonely(kStart + 0.95);
+  bag.write("/cam0/planes", lonely, colourImage("mono8", lonely, cv::Scalar(9)));
+}
+
+TEST(BagImport, EveryEncodingGivesGreyImagesPairedMasksAndADecimatedImu) {
+  for (const std::string encoding : {"rgb8", "bgr8", "rgba8", "bgra8", "mono16", "mono8"}) {
+    test::TempDir dir;
+    writeBag(dir.file("in.bag"), encoding,
+             encoding == "bgr8" ? rosbag::compression::BZ2 : rosbag::compression::LZ4);
+    const BagImportCounts counts = importBag(options(dir));
+    EXPECT_EQ(counts.images, 5u) << encoding;
+    EXPECT_EQ(counts.masks, 4u) << encoding;
+    EXPECT_EQ(counts.unpaired_masks, 1u) << encoding;
+    EXPECT_EQ(counts.imu, 201u) << encoding;  // 1 kHz over 1 s at 200 Hz
+    RawlogReader reader(dir.file("out.rawlog"));
+    double last_imu = -1;
+    int images = 0;
+    for (auto obs = reader.next(); obs; obs = reader.next()) {
+      const double t = toSeconds(obs->timestamp) - kStart;
+      if (obs->sensorLabel == "IMU") {
+        if (last_imu >= 0) EXPECT_NEAR(t - last_imu, 0.005, 1e-6);
+        last_imu = t;
+      } else if (obs->sensorLabel == "CAM0") {
+        EXPECT_NEAR(t, 0.1 + 0.2 * images++, 1e-6);
+        const cv::Mat gray =
+            loadGrayImage(dynamic_cast<const mrpt::obs::CObservationImage&>(*obs), reader);
+        // ITU-R BT.601 luma of (200, 100, 50): 0.299 R + 0.587 G + 0.114 B = 124.3
+        const double expected = encoding.rfind("mono", 0) == 0 ? 200 : 124.3;
+        EXPECT_NEAR(gray.at<uint8_t>(10, 10), expected, 1.0) << encoding;
+      } else if (obs->sensorLabel == "PLANE_MASK") {
+        const cv::Mat mask =
+            loadGrayImage(dynamic_cast<const mrpt::obs::CObservationImage&>(*obs), reader);
+        EXPECT_EQ(mask.at<uint8_t>(0, 0), images) << "the mask of image " << images;
+      }
+    }
+    EXPECT_EQ(images, 5);
+    EXPECT_TRUE(fs::exists(dir.file("calib.ini")));
+  }
+}
+
+TEST(BagImport, StampsKeepTheirTicks) {
+  for (const double t : {0.0, 0.05, 0.15, 12.345, 1600000000.123456789}) {
+    const ros::Time stamp = rosStamp(fromSeconds(t));
+    EXPECT_EQ(fromSeconds(rawlogSeconds(stamp)), fromSeconds(t)) << t;
+  }
+}
+
+/// importBag's InputError text, and that nothing was written.
+std::string importError(const BagImportOptions& opt) {
+  try {
+    importBag(opt);
+  } catch (const InputError& e) {
+    EXPECT_FALSE(fs::exists(opt.output_rawlog)) << e.what();
+    EXPECT_FALSE(fs::exists(fs::path(opt.output_rawlog).parent_path() / "calib.ini")) << e.what();
+    return e.what();
+  }
+  ADD_FAILURE() << "no error";
+  return "";
+}
+
+TEST(BagImport, BadInputIsOneErrorAndNoOutput) {
+  test::TempDir dir;
+  writeBag(dir.file("in.bag"), "rgb8", rosbag::compression::LZ4);
+  BagImportOptions opt = options(dir);
+  opt.topics.imu = "/imu";
+  const std::string missing = importError(opt);
+  EXPECT_NE(missing.find("no messages on /imu (the bag has: "), std::string::npos) << missing;
+  EXPECT_NE(missing.find("/imu0 (sensor_msgs/Imu)"), std::string::npos) << missing;
+
+  opt = options(dir);
+  opt.topics.imu = "/cam0/image_raw";
+  EXPECT_NE(importError(opt).find("carries sensor_msgs/Image, not sensor_msgs/Imu"),
+            std::string::npos);
+
+  test::TempDir yuv;
+  writeBag(yuv.file("in.bag"), "yuv422", rosbag::compression::Uncompressed);
+  const std::string encoding = importError(options(yuv));
+  EXPECT_NE(encoding.find("/cam0/image_raw message 1: image encoding 'yuv422' is not supported"),
+            std::string::npos)
+      << encoding;
+
+  test::TempDir sizes;
+  {
+    rosbag::Bag bag(sizes.file("in.bag"), rosbag::bagmode::Write);
+    const ros::Time stamp(kStart);
+    bag.write("/imu0", stamp, imuMessage(stamp, 0));
+    bag.write("/cam0/image_raw", stamp, colourImage("mono8", stamp, cv::Scalar(1)));
+    bag.write("/cam0/planes", stamp, colourImage("mono8", stamp, cv::Scalar(1), 32, 24));
+  }
+  EXPECT_NE(importError(options(sizes)).find("mask 32x24 differs from its image 64x48"),
+            std::string::npos);
+
+  test::TempDir backwards;
+  {
+    rosbag::Bag bag(backwards.file("in.bag"), rosbag::bagmode::Write);
+    for (const double t : {0.0, 0.002, 0.001}) {
+      const ros::Time stamp(kStart + t);
+      bag.write("/imu0", ros::Time(kStart + 1), imuMessage(stamp, 0));
+    }
+    bag.write("/cam0/image_raw", ros::Time(kStart), colourImage("mono8", ros::Time(kStart), {}));
+  }
+  opt = options(backwards);
+  opt.topics.mask.clear();
+  const std::string order = importError(opt);
+  EXPECT_NE(order.find("/imu0 message 3: stamp t=1600000000.00"), std::string::npos) << order;
+  EXPECT_NE(order.find("is not after the previous one"), std::string::npos) << order;
+
+  test::TempDir truncated;
+  writeBag(truncated.file("in.bag"), "mono8", rosbag::compression::Uncompressed);
+  fs::resize_file(truncated.file("in.bag"), fs::file_size(truncated.file("in.bag")) / 2);
+  const std::string cut = importError(options(truncated));
+  EXPECT_NE(cut.find(truncated.file("in.bag")), std::string::npos) << cut;
+}
+
+}  // namespace
+}  // namespace rpvio
