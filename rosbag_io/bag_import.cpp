@@ -3,6 +3,7 @@
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <sensor_msgs/Image.h>
+#include <nav_msgs/Odometry.h>
 #include <sensor_msgs/Imu.h>
 
 #include <cmath>
@@ -88,23 +89,60 @@ std::vector<ImuSample> readImu(const rosbag::Bag& bag, const std::string& path,
   return samples;
 }
 
+/// Ground-truth body poses from a nav_msgs/Odometry topic.
+Trajectory readOdometry(const rosbag::Bag& bag, const std::string& path, const std::string& topic) {
+  Trajectory poses;
+  size_t index = 0;
+  for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TopicQuery(topic))) {
+    const std::string where = topic + " message " + std::to_string(++index);
+    const auto msg = m.instantiate<nav_msgs::Odometry>();
+    if (!msg) throw InputError(path, where, "not a nav_msgs/Odometry");
+    StampedPose pose;
+    pose.t = rawlogSeconds(msg->header.stamp);
+    if (!poses.empty() && !(pose.t > poses.back().t))
+      throw InputError(path, where,
+                       "stamp " + timeText(msg->header.stamp) + " is not after the previous one");
+    const auto& p = msg->pose.pose;
+    pose.p = Eigen::Vector3d(p.position.x, p.position.y, p.position.z);
+    pose.q = Eigen::Quaterniond(p.orientation.w, p.orientation.x, p.orientation.y,
+                                p.orientation.z);
+    if (!pose.p.allFinite() || !(std::abs(pose.q.norm() - 1) < 1e-3))
+      throw InputError(path, where, "position not finite or orientation not a unit quaternion");
+    pose.q.normalize();
+    poses.push_back(pose);
+  }
+  return poses;
+}
+
 }  // namespace
 
 BagPreset bagPreset(const std::string& name) {
   BagPreset preset;
   if (name == "generic") return preset;
+  const Eigen::Matrix3d R_BC = (Eigen::Matrix3d() << 0, 0, 1, 1, 0, 0, 0, 1, 0).finished();
+  if (name == "viode") {
+    preset.topics = {"/cam0/image_raw", "/imu0", "/cam0/segmentation", "/odometry"};
+    Calibration c;
+    c.camera.width = 752;
+    c.camera.height = 480;
+    c.camera.fx = c.camera.fy = 376;
+    c.camera.cx = 376;
+    c.camera.cy = 240;
+    c.T_BC.linear() = R_BC;
+    preset.calibration = c;  // IMU noise: ImuNoise's defaults (sensor_types.h)
+    preset.mask_colours = {{{179, 217, 227}, 1}, {{167, 128, 147}, 2}, {{235, 152, 233}, 3}};
+    return preset;  // ground, wall, road
+  }
   if (name != "rpvio-sim")
-    throw std::invalid_argument("unknown preset '" + name + "' (rpvio-sim or generic)");
-  preset.topics = {"/image", "/imu", "/mask"};
+    throw std::invalid_argument("unknown preset '" + name + "' (rpvio-sim, viode or generic)");
+  preset.topics = {"/image", "/imu", "/mask", ""};
   Calibration c;
   c.camera.width = 640;
   c.camera.height = 480;
   c.camera.fx = c.camera.fy = 320;
   c.camera.cx = 320;
   c.camera.cy = 240;
-  c.T_BC.linear() << 0, 0, 1,  //
-      1, 0, 0,                 //
-      0, 1, 0;
+  c.T_BC.linear() = R_BC;
   c.T_BC.translation() = Eigen::Vector3d(0.5, 0, 0);
   c.time_offset = -0.0308;  // s, t_imu = t_cam + offset
   preset.calibration = c;   // IMU noise: ImuNoise's defaults (sensor_types.h)
@@ -126,9 +164,13 @@ BagImportCounts importBag(const BagImportOptions& opt,
     requireTopic(bag, path, opt.topics.image, "sensor_msgs/Image");
     requireTopic(bag, path, opt.topics.imu, "sensor_msgs/Imu");
     if (!opt.topics.mask.empty()) requireTopic(bag, path, opt.topics.mask, "sensor_msgs/Image");
+    if (!opt.topics.odometry.empty())
+      requireTopic(bag, path, opt.topics.odometry, "nav_msgs/Odometry");
     const std::vector<ImuSample> imu = readImu(bag, path, opt.topics.imu, opt.imu_rate_hz);
-    const Trajectory gt =
-        opt.groundtruth_file.empty() ? Trajectory{} : readTum(opt.groundtruth_file);
+    const Trajectory gt = !opt.groundtruth_file.empty() ? readTum(opt.groundtruth_file)
+                          : !opt.topics.odometry.empty()
+                              ? readOdometry(bag, path, opt.topics.odometry)
+                              : Trajectory{};
 
     RawlogWriter writer(opt.output_rawlog, opt.calibration);
     size_t next_imu = 0, next_gt = 0;
@@ -196,7 +238,9 @@ BagImportCounts importBag(const BagImportOptions& opt,
           waiting_images[stamp] = image;
         }
       } else {
-        cv::Mat mask = labelsFromRosImage(*msg, path, where);
+        cv::Mat mask = opt.mask_colours.empty()
+                           ? labelsFromRosImage(*msg, path, where)
+                           : labelsFromColours(*msg, opt.mask_colours, path, where);
         if (const auto image = waiting_images.find(stamp); image != waiting_images.end()) {
           writeImagesBefore(stamp);
           writeImage(stamp, image->second, &mask);

@@ -2,19 +2,22 @@
 // Converts a ROS1 bag into an rpvio rawlog + calib.ini (DESIGN.md §4), without ROS: an image
 // topic → CAM0 (any encoding of ros_image.h, made grey), an optional mask topic → PLANE_MASK
 // (mono8, value = plane id, 0 = none; paired with the image of identical header stamp), a
-// sensor_msgs/Imu topic → IMU (optionally decimated by timestamp), an optional TUM file →
-// GROUND_TRUTH. Header stamps, not record times. Streams: only the IMU and the ground truth are
+// sensor_msgs/Imu topic → IMU (optionally decimated by timestamp), an optional TUM file or
+// nav_msgs/Odometry topic → GROUND_TRUTH. Header stamps, not record times. Streams: only the IMU and the ground truth are
 // held in memory, and images waiting for their mask.
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "common/sensor_types.h"
+#include "rosbag_io/ros_image.h"
 
 namespace rpvio {
 
 struct BagTopics {
   std::string image, imu, mask;  // mask "" = none
+  std::string odometry;          // ground truth (nav_msgs/Odometry), "" = none
 };
 
 /// What a dataset's bags contain: topics, calibration, IMU rate (docs/tools.md, rpvio-import).
@@ -23,9 +26,11 @@ struct BagPreset {
   std::optional<Calibration> calibration;  // none: --calib is required
   double imu_rate_hz = 0;                  // decimate to this rate; 0 = keep every sample
   std::string groundtruth_beside_bag;      // TUM file name looked for beside the bag
+  std::vector<MaskColour> mask_colours;    // empty: masks are mono8 plane ids
 };
 
-/// "rpvio-sim" (the RP-VIO authors' simulated warehouse bags) or "generic" (nothing preset).
+/// "rpvio-sim" (the RP-VIO authors' simulated warehouse bags), "viode" (VIODE's simulated drone
+/// bags, segmentation colours as planes) or "generic" (nothing preset).
 /// Throws std::invalid_argument on another name.
 BagPreset bagPreset(const std::string& name);
 
@@ -35,6 +40,7 @@ struct BagImportOptions {
   Calibration calibration;
   double imu_rate_hz = 0;
   std::string groundtruth_file;  // TUM, optional
+  std::vector<MaskColour> mask_colours;  // empty: masks are mono8 plane ids
 };
 
 struct BagImportCounts {

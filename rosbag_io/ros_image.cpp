@@ -55,6 +55,25 @@ cv::Mat labelsFromRosImage(const sensor_msgs::Image& msg, const std::string& fil
   return pixels(msg, CV_8UC1, file, where).clone();
 }
 
+cv::Mat labelsFromColours(const sensor_msgs::Image& msg, const std::vector<MaskColour>& colours,
+                          const std::string& file, const std::string& where) {
+  if (msg.encoding != "rgb8" && msg.encoding != "bgr8")
+    throw InputError(file, where,
+                     "a segmentation must be rgb8 or bgr8 (class colours), not '" + msg.encoding +
+                         "'");
+  const cv::Mat image = pixels(msg, CV_8UC3, file, where);
+  const bool rgb = msg.encoding == "rgb8";
+  cv::Mat labels(image.size(), CV_8UC1, cv::Scalar(0));
+  for (const MaskColour& c : colours) {
+    const cv::Vec3b colour = rgb ? cv::Vec3b(c.rgb[0], c.rgb[1], c.rgb[2])
+                                 : cv::Vec3b(c.rgb[2], c.rgb[1], c.rgb[0]);
+    cv::Mat is_class;
+    cv::inRange(image, colour, colour, is_class);
+    labels.setTo(c.plane_id, is_class);
+  }
+  return labels;
+}
+
 sensor_msgs::Image mono8RosImage(const cv::Mat& image, const ros::Time& stamp) {
   sensor_msgs::Image msg;
   msg.header.stamp = stamp;

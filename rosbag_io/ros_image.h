@@ -2,7 +2,9 @@
 // sensor_msgs/Image to and from OpenCV, by the message's `encoding`.
 #include <opencv2/core.hpp>
 #include <sensor_msgs/Image.h>
+#include <array>
 #include <string>
+#include <vector>
 
 namespace rpvio {
 
@@ -13,6 +15,16 @@ cv::Mat grayFromRosImage(const sensor_msgs::Image& msg, const std::string& file,
 /// The labels of a mono8 message as they are. Throws InputError(file, where) otherwise.
 cv::Mat labelsFromRosImage(const sensor_msgs::Image& msg, const std::string& file,
                            const std::string& where);
+/// A semantic segmentation's class colour and the plane id it becomes.
+struct MaskColour {
+  std::array<uint8_t, 3> rgb;
+  uint8_t plane_id;
+};
+
+/// Plane ids of an rgb8 or bgr8 segmentation: `colours` become their plane ids, every other
+/// colour 0. Throws InputError(file, where) on another encoding.
+cv::Mat labelsFromColours(const sensor_msgs::Image& msg, const std::vector<MaskColour>& colours,
+                          const std::string& file, const std::string& where);
 /// A mono8 message of an 8-bit single-channel image.
 sensor_msgs::Image mono8RosImage(const cv::Mat& image, const ros::Time& stamp);
 

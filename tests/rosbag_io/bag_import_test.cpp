@@ -1,6 +1,7 @@
 // importBag on small bags written here with the same library: encodings, mask pairing, IMU
 // decimation, exact stamps, and bad input (one error naming the bag and the message, no output).
 #include <gtest/gtest.h>
+#include <nav_msgs/Odometry.h>
 #include <rosbag/bag.h>
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/Imu.h>
@@ -133,6 +134,64 @@ TEST(BagImport, StampsKeepTheirTicks) {
   for (const double t : {0.0, 0.05, 0.15, 12.345, 1600000000.123456789}) {
     const ros::Time stamp = rosStamp(fromSeconds(t));
     EXPECT_EQ(fromSeconds(rawlogSeconds(stamp)), fromSeconds(t)) << t;
+  }
+}
+
+TEST(BagImport, VioDePresetTurnsClassColoursIntoPlanesInBothEncodingsAndOdometryIntoGroundTruth) {
+  const BagPreset viode = bagPreset("viode");
+  for (const std::string encoding : {"rgb8", "bgr8"}) {
+    test::TempDir dir;
+    {
+      rosbag::Bag bag(dir.file("in.bag"), rosbag::bagmode::Write);
+      for (int k = 0; k <= 200; ++k) {
+        const ros::Time stamp(kStart + k * 0.005);
+        bag.write("/imu0", stamp, imuMessage(stamp, 0));
+      }
+      for (int k = 0; k < 3; ++k) {
+        const ros::Time stamp(kStart + 0.2 * k);
+        bag.write("/cam0/image_raw", stamp, colourImage("mono8", stamp, cv::Scalar(90)));
+        // Quarters: ground, wall, road, and the colour of something else.
+        sensor_msgs::Image segmentation = colourImage(encoding, stamp, cv::Scalar(10, 20, 30));
+        const int quarter = 64 * 48 / 4;
+        for (int q = 0; q < 3; ++q)
+          for (int i = q * quarter; i < (q + 1) * quarter; ++i)
+            for (int c = 0; c < 3; ++c)
+              segmentation.data[3 * i + c] =
+                  viode.mask_colours[q].rgb[encoding == "rgb8" ? c : 2 - c];
+        bag.write("/cam0/segmentation", stamp, segmentation);
+        nav_msgs::Odometry odometry;
+        odometry.header.stamp = stamp;
+        odometry.pose.pose.position.x = k;
+        odometry.pose.pose.orientation.w = 1;
+        bag.write("/odometry", stamp, odometry);
+      }
+    }
+    BagImportOptions opt = options(dir);
+    opt.topics = viode.topics;
+    opt.mask_colours = viode.mask_colours;
+    const BagImportCounts counts = importBag(opt);
+    EXPECT_EQ(counts.masks, 3u) << encoding;
+    EXPECT_EQ(counts.groundtruth, 3u) << encoding;
+    RawlogReader reader(dir.file("out.rawlog"));
+    int masks = 0, poses = 0;
+    for (auto obs = reader.next(); obs; obs = reader.next()) {
+      if (obs->sensorLabel == "PLANE_MASK") {
+        const cv::Mat mask =
+            loadGrayImage(dynamic_cast<const mrpt::obs::CObservationImage&>(*obs), reader);
+        // Rows of 64 px: the quarters are 12 rows each.
+        EXPECT_EQ(mask.at<uint8_t>(5, 10), 1) << encoding;
+        EXPECT_EQ(mask.at<uint8_t>(17, 10), 2) << encoding;
+        EXPECT_EQ(mask.at<uint8_t>(29, 10), 3) << encoding;
+        EXPECT_EQ(mask.at<uint8_t>(41, 10), 0) << encoding;
+        ++masks;
+      } else if (obs->sensorLabel == "GROUND_TRUTH") {
+        EXPECT_NEAR(
+            toStampedPose(dynamic_cast<const mrpt::obs::CObservationRobotPose&>(*obs)).p.x(),
+            poses++, 1e-12);
+      }
+    }
+    EXPECT_EQ(masks, 3);
+    EXPECT_EQ(poses, 3);
   }
 }
 
