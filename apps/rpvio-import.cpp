@@ -28,7 +28,8 @@ rpvio::BagImportOptions bagOptions(const rpvio::apps::CommandLine& cli) {
   opt.topics.image = cli.valueOr("image-topic", preset.topics.image);
   opt.topics.imu = cli.valueOr("imu-topic", preset.topics.imu);
   opt.topics.mask = cli.valueOr("mask-topic", preset.topics.mask);
-  opt.topics.odometry = cli.valueOr("odometry-topic", preset.topics.odometry);
+  opt.topics.groundtruth = cli.valueOr("gt-topic", preset.topics.groundtruth);
+  opt.topics.accel = cli.valueOr("accel-topic", preset.topics.accel);
   opt.mask_colours = preset.mask_colours;
   if (opt.topics.image.empty() || opt.topics.imu.empty())
     throw apps::UsageError(
@@ -44,7 +45,7 @@ rpvio::BagImportOptions bagOptions(const rpvio::apps::CommandLine& cli) {
       std::filesystem::path(opt.bag_path).parent_path() / preset.groundtruth_beside_bag;
   if (cli.has("gt")) {
     opt.groundtruth_file = cli.value("gt");
-    opt.topics.odometry.clear();
+    opt.topics.groundtruth.clear();
   } else if (!preset.groundtruth_beside_bag.empty() && std::filesystem::is_regular_file(beside))
     opt.groundtruth_file = beside.string();
   return opt;
@@ -55,17 +56,20 @@ const char* kUsage =
     "  Converts an EuRoC (ASL) folder: cam0 images -> CAM0, imu0 -> IMU, optional masks folder\n"
     "  (PNG named like the images) -> PLANE_MASK, optional ground truth (TUM or EuRoC CSV) ->\n"
     "  GROUND_TRUTH; writes calib.ini beside the rawlog.\n"
-    "usage: rpvio-import rosbag --bag FILE.bag --preset rpvio-sim|viode|generic [--image-topic T]\n"
-    "                    [--imu-topic T] [--mask-topic T] [--odometry-topic T] [--calib "
-    "calib.ini]\n"
-    "                    [--imu-rate HZ] [--gt FILE.tum] --out FILE.rawlog\n"
+    "usage: rpvio-import rosbag --bag FILE.bag --preset rpvio-sim|viode|openloris|generic\n"
+    "                    [--image-topic T] [--imu-topic T] [--accel-topic T] [--mask-topic T]\n"
+    "                    [--gt-topic T] [--calib calib.ini] [--imu-rate HZ] [--gt FILE.tum]\n"
+    "                    --out FILE.rawlog\n"
     "  Converts a ROS1 bag (no ROS needed): image topic -> CAM0 (mono8, rgb8, bgr8, rgba8, bgra8,\n"
     "  mono16), mask topic -> PLANE_MASK (mono8 plane ids, paired by identical stamp), IMU topic\n"
-    "  (decimated to --imu-rate by timestamp) -> IMU, TUM ground truth -> GROUND_TRUTH; header\n"
-    "  stamps; writes calib.ini beside the rawlog. The preset gives topics, calibration and IMU\n"
+    "  (decimated to --imu-rate by timestamp) -> IMU, TUM file or pose topic -> GROUND_TRUTH;\n"
+    "  header stamps; writes calib.ini beside the rawlog. The preset gives topics, calibration and "
+    "IMU\n"
     "  rate (rpvio-sim: /image, /mask, /imu at 200 Hz, groundtruth.txt beside the bag; viode:\n"
     "  /cam0/image_raw, /imu0, /cam0/segmentation colours of ground, wall, road as planes 1-3,\n"
-    "  /odometry as ground truth); options override it; generic needs every topic and --calib.\n"
+    "  /odometry as ground truth; openloris: /d400/color/image_raw, /d400/gyro/sample and\n"
+    "  /d400/accel/sample merged, /gt, --calib from the dataset's files); options override it;\n"
+    "  generic needs every topic and --calib.\n"
     "usage: rpvio-import verify --rawlog FILE\n"
     "  Streams a rawlog, loading every image and IMU sample, and prints the counts per label.\n"
     "Exit code 2 on bad input, with a one-line message naming the file and position.\n";
@@ -77,7 +81,7 @@ int main(int argc, char** argv) {
     const apps::CommandLine cli(
         argc, argv,
         {"mav0", "gt", "masks", "out", "rawlog", "bag", "preset", "image-topic", "imu-topic",
-         "mask-topic", "odometry-topic", "calib", "imu-rate"},
+         "mask-topic", "gt-topic", "accel-topic", "calib", "imu-rate"},
         {});
     const std::string command = cli.positional().size() == 1 ? cli.positional()[0] : "";
     if (command == "verify") {

@@ -3,6 +3,7 @@
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <sensor_msgs/Image.h>
+#include <geometry_msgs/PoseStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <sensor_msgs/Imu.h>
 
@@ -43,42 +44,33 @@ std::string topicList(const rosbag::Bag& bag) {
   return list.empty() ? "no topics" : list;
 }
 
+/// InputError unless the bag has messages on `topic`, all of type `type` (or `other_type`).
 void requireTopic(const rosbag::Bag& bag, const std::string& path, const std::string& topic,
-                  const std::string& type) {
+                  const std::string& type, const std::string& other_type = "") {
   rosbag::View view(bag, rosbag::TopicQuery(topic));
   if (view.size() == 0)
     throw InputError(path, "", "no messages on " + topic + " (the bag has: " + topicList(bag) + ")");
   for (const rosbag::ConnectionInfo* c : view.getConnections())
-    if (c->datatype != type)
-      throw InputError(path, "", topic + " carries " + c->datatype + ", not " + type);
+    if (c->datatype != type && c->datatype != other_type)
+      throw InputError(path, "",
+                       topic + " carries " + c->datatype + ", not " + type +
+                           (other_type.empty() ? "" : " or " + other_type));
 }
 
-/// The IMU samples, decimated to `rate_hz` by timestamp: the first sample at or after each point
-/// of the grid t0 + k / rate is kept (a thousandth of a period early counts as on it: stamp
-/// rounding).
-std::vector<ImuSample> readImu(const rosbag::Bag& bag, const std::string& path,
-                               const std::string& topic, double rate_hz) {
+/// Every sample of a sensor_msgs/Imu topic, stamps strictly increasing.
+std::vector<ImuSample> readImuTopic(const rosbag::Bag& bag, const std::string& path,
+                                    const std::string& topic) {
   std::vector<ImuSample> samples;
-  double last_t = -INFINITY, t0 = 0;
-  long long last_slot = -1;
   size_t index = 0;
   for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TopicQuery(topic))) {
     const std::string where = topic + " message " + std::to_string(++index);
     const auto msg = m.instantiate<sensor_msgs::Imu>();
     if (!msg) throw InputError(path, where, "not a sensor_msgs/Imu");
-    const double t = rawlogSeconds(msg->header.stamp);
-    if (!(t > last_t))
+    ImuSample s;
+    s.t = rawlogSeconds(msg->header.stamp);
+    if (!samples.empty() && !(s.t > samples.back().t))
       throw InputError(path, where,
                        "stamp " + timeText(msg->header.stamp) + " is not after the previous one");
-    last_t = t;
-    if (samples.empty()) t0 = t;
-    if (rate_hz > 0) {
-      const auto slot = static_cast<long long>(std::floor((t - t0) * rate_hz + 1e-3));
-      if (slot <= last_slot) continue;
-      last_slot = slot;
-    }
-    ImuSample s;
-    s.t = t;
     s.gyro = {msg->angular_velocity.x, msg->angular_velocity.y, msg->angular_velocity.z};
     s.accel = {msg->linear_acceleration.x, msg->linear_acceleration.y,
                msg->linear_acceleration.z};
@@ -89,20 +81,80 @@ std::vector<ImuSample> readImu(const rosbag::Bag& bag, const std::string& path,
   return samples;
 }
 
-/// Ground-truth body poses from a nav_msgs/Odometry topic.
-Trajectory readOdometry(const rosbag::Bag& bag, const std::string& path, const std::string& topic) {
+/// One stream from a gyroscope's and an accelerometer's separate samples: at every sample of
+/// either sensor (within the time both cover) the other sensor's value interpolated linearly.
+std::vector<ImuSample> mergeSplitImu(const std::vector<ImuSample>& gyro,
+                                     const std::vector<ImuSample>& accel) {
+  std::vector<ImuSample> merged;
+  if (gyro.empty() || accel.empty()) return merged;
+  const double begin = std::max(gyro.front().t, accel.front().t),
+               end = std::min(gyro.back().t, accel.back().t);
+  size_t g = 0, a = 0;  // the next sample of each
+  auto interpolate = [](const std::vector<ImuSample>& v, size_t next, double t,
+                        Eigen::Vector3d ImuSample::*value) -> Eigen::Vector3d {
+    if (next == 0) return v[0].*value;
+    if (next == v.size()) return v.back().*value;
+    const double w = (t - v[next - 1].t) / (v[next].t - v[next - 1].t);
+    return (1 - w) * (v[next - 1].*value) + w * (v[next].*value);
+  };
+  while (g < gyro.size() || a < accel.size()) {
+    const double t = std::min(g < gyro.size() ? gyro[g].t : INFINITY,
+                              a < accel.size() ? accel[a].t : INFINITY);
+    const bool gyro_here = g < gyro.size() && gyro[g].t == t,
+               accel_here = a < accel.size() && accel[a].t == t;
+    if (t >= begin && t <= end) {
+      ImuSample s;
+      s.t = t;
+      s.gyro = gyro_here ? gyro[g].gyro : interpolate(gyro, g, t, &ImuSample::gyro);
+      s.accel = accel_here ? accel[a].accel : interpolate(accel, a, t, &ImuSample::accel);
+      merged.push_back(s);
+    }
+    g += gyro_here;
+    a += accel_here;
+  }
+  return merged;
+}
+
+/// The samples decimated to `rate_hz` by timestamp: the first sample at or after each point of
+/// the grid t0 + k / rate is kept (a thousandth of a period early counts as on it: stamp
+/// rounding). rate_hz <= 0: all.
+std::vector<ImuSample> decimate(const std::vector<ImuSample>& samples, double rate_hz) {
+  if (rate_hz <= 0 || samples.empty()) return samples;
+  std::vector<ImuSample> kept;
+  long long last_slot = -1;
+  for (const ImuSample& s : samples) {
+    const auto slot =
+        static_cast<long long>(std::floor((s.t - samples.front().t) * rate_hz + 1e-3));
+    if (slot <= last_slot) continue;
+    last_slot = slot;
+    kept.push_back(s);
+  }
+  return kept;
+}
+
+/// Ground-truth body poses from a nav_msgs/Odometry or geometry_msgs/PoseStamped topic.
+Trajectory readGroundTruthTopic(const rosbag::Bag& bag, const std::string& path,
+                                const std::string& topic) {
   Trajectory poses;
   size_t index = 0;
   for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TopicQuery(topic))) {
     const std::string where = topic + " message " + std::to_string(++index);
-    const auto msg = m.instantiate<nav_msgs::Odometry>();
-    if (!msg) throw InputError(path, where, "not a nav_msgs/Odometry");
+    std_msgs::Header header;
+    geometry_msgs::Pose p;
+    if (const auto odometry = m.instantiate<nav_msgs::Odometry>()) {
+      header = odometry->header;
+      p = odometry->pose.pose;
+    } else if (const auto stamped = m.instantiate<geometry_msgs::PoseStamped>()) {
+      header = stamped->header;
+      p = stamped->pose;
+    } else {
+      throw InputError(path, where, "not a nav_msgs/Odometry or geometry_msgs/PoseStamped");
+    }
     StampedPose pose;
-    pose.t = rawlogSeconds(msg->header.stamp);
+    pose.t = rawlogSeconds(header.stamp);
     if (!poses.empty() && !(pose.t > poses.back().t))
       throw InputError(path, where,
-                       "stamp " + timeText(msg->header.stamp) + " is not after the previous one");
-    const auto& p = msg->pose.pose;
+                       "stamp " + timeText(header.stamp) + " is not after the previous one");
     pose.p = Eigen::Vector3d(p.position.x, p.position.y, p.position.z);
     pose.q = Eigen::Quaterniond(p.orientation.w, p.orientation.x, p.orientation.y,
                                 p.orientation.z);
@@ -121,7 +173,7 @@ BagPreset bagPreset(const std::string& name) {
   if (name == "generic") return preset;
   const Eigen::Matrix3d R_BC = (Eigen::Matrix3d() << 0, 0, 1, 1, 0, 0, 0, 1, 0).finished();
   if (name == "viode") {
-    preset.topics = {"/cam0/image_raw", "/imu0", "/cam0/segmentation", "/odometry"};
+    preset.topics = {"/cam0/image_raw", "/imu0", "/cam0/segmentation", "/odometry", ""};
     Calibration c;
     c.camera.width = 752;
     c.camera.height = 480;
@@ -133,9 +185,16 @@ BagPreset bagPreset(const std::string& name) {
     preset.mask_colours = {{{179, 217, 227}, 1}, {{167, 128, 147}, 2}, {{235, 152, 233}, 3}};
     return preset;  // ground, wall, road
   }
+  if (name == "openloris") {  // masks: --mask-topic (the RP-VIO authors': /planes/segments_crf)
+    preset.topics = {"/d400/color/image_raw", "/d400/gyro/sample", "", "/gt",
+                     "/d400/accel/sample"};
+    preset.imu_rate_hz = 200;
+    return preset;
+  }
   if (name != "rpvio-sim")
-    throw std::invalid_argument("unknown preset '" + name + "' (rpvio-sim, viode or generic)");
-  preset.topics = {"/image", "/imu", "/mask", ""};
+    throw std::invalid_argument("unknown preset '" + name +
+                                "' (rpvio-sim, viode, openloris or generic)");
+  preset.topics = {"/image", "/imu", "/mask", "", ""};
   Calibration c;
   c.camera.width = 640;
   c.camera.height = 480;
@@ -164,12 +223,18 @@ BagImportCounts importBag(const BagImportOptions& opt,
     requireTopic(bag, path, opt.topics.image, "sensor_msgs/Image");
     requireTopic(bag, path, opt.topics.imu, "sensor_msgs/Imu");
     if (!opt.topics.mask.empty()) requireTopic(bag, path, opt.topics.mask, "sensor_msgs/Image");
-    if (!opt.topics.odometry.empty())
-      requireTopic(bag, path, opt.topics.odometry, "nav_msgs/Odometry");
-    const std::vector<ImuSample> imu = readImu(bag, path, opt.topics.imu, opt.imu_rate_hz);
+    if (!opt.topics.groundtruth.empty())
+      requireTopic(bag, path, opt.topics.groundtruth, "nav_msgs/Odometry",
+                   "geometry_msgs/PoseStamped");
+    if (!opt.topics.accel.empty()) requireTopic(bag, path, opt.topics.accel, "sensor_msgs/Imu");
+    const std::vector<ImuSample> imu = decimate(
+        opt.topics.accel.empty() ? readImuTopic(bag, path, opt.topics.imu)
+                                 : mergeSplitImu(readImuTopic(bag, path, opt.topics.imu),
+                                                 readImuTopic(bag, path, opt.topics.accel)),
+        opt.imu_rate_hz);
     const Trajectory gt = !opt.groundtruth_file.empty() ? readTum(opt.groundtruth_file)
-                          : !opt.topics.odometry.empty()
-                              ? readOdometry(bag, path, opt.topics.odometry)
+                          : !opt.topics.groundtruth.empty()
+                              ? readGroundTruthTopic(bag, path, opt.topics.groundtruth)
                               : Trajectory{};
 
     RawlogWriter writer(opt.output_rawlog, opt.calibration);

@@ -3,7 +3,7 @@
 // topic → CAM0 (any encoding of ros_image.h, made grey), an optional mask topic → PLANE_MASK
 // (mono8, value = plane id, 0 = none; paired with the image of identical header stamp), a
 // sensor_msgs/Imu topic → IMU (optionally decimated by timestamp), an optional TUM file or
-// nav_msgs/Odometry topic → GROUND_TRUTH. Header stamps, not record times. Streams: only the IMU and the ground truth are
+// nav_msgs/Odometry or geometry_msgs/PoseStamped topic → GROUND_TRUTH. Header stamps, not record times. Streams: only the IMU and the ground truth are
 // held in memory, and images waiting for their mask.
 #include <functional>
 #include <optional>
@@ -17,7 +17,10 @@ namespace rpvio {
 
 struct BagTopics {
   std::string image, imu, mask;  // mask "" = none
-  std::string odometry;          // ground truth (nav_msgs/Odometry), "" = none
+  std::string groundtruth;  // nav_msgs/Odometry or geometry_msgs/PoseStamped, "" = none
+  // An accelerometer publishing apart from the gyroscope (`imu` then gives the angular velocity
+  // only); merged into one stream, each sensor interpolated at the other's samples. "" = none.
+  std::string accel;
 };
 
 /// What a dataset's bags contain: topics, calibration, IMU rate (docs/tools.md, rpvio-import).
@@ -30,7 +33,9 @@ struct BagPreset {
 };
 
 /// "rpvio-sim" (the RP-VIO authors' simulated warehouse bags), "viode" (VIODE's simulated drone
-/// bags, segmentation colours as planes) or "generic" (nothing preset).
+/// bags, segmentation colours as planes), "openloris" (the official OpenLORIS-Scene bags' D435i:
+/// separate accelerometer and gyroscope; calibration from the dataset's files: --calib) or
+/// "generic" (nothing preset).
 /// Throws std::invalid_argument on another name.
 BagPreset bagPreset(const std::string& name);
 

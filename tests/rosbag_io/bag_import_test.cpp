@@ -1,5 +1,6 @@
 // importBag on small bags written here with the same library: encodings, mask pairing, IMU
 // decimation, exact stamps, and bad input (one error naming the bag and the message, no output).
+#include <geometry_msgs/PoseStamped.h>
 #include <gtest/gtest.h>
 #include <nav_msgs/Odometry.h>
 #include <rosbag/bag.h>
@@ -137,7 +138,7 @@ TEST(BagImport, StampsKeepTheirTicks) {
   }
 }
 
-TEST(BagImport, VioDePresetTurnsClassColoursIntoPlanesInBothEncodingsAndOdometryIntoGroundTruth) {
+TEST(BagImport, ViodePresetTurnsClassColoursIntoPlanesInBothEncodingsAndOdometryIntoGroundTruth) {
   const BagPreset viode = bagPreset("viode");
   for (const std::string encoding : {"rgb8", "bgr8"}) {
     test::TempDir dir;
@@ -193,6 +194,59 @@ TEST(BagImport, VioDePresetTurnsClassColoursIntoPlanesInBothEncodingsAndOdometry
     EXPECT_EQ(masks, 3);
     EXPECT_EQ(poses, 3);
   }
+}
+
+TEST(BagImport, OpenLorisPresetMergesTheSplitAccelerometerAndGyroscope) {
+  // Gyroscope at 400 Hz, accelerometer at 250 Hz, both linear in time: interpolation is exact.
+  const BagPreset openloris = bagPreset("openloris");
+  test::TempDir dir;
+  auto gyro_x = [](double t) { return 0.5 + 2 * t; };
+  auto accel_z = [](double t) { return 9.0 + 3 * t; };
+  {
+    rosbag::Bag bag(dir.file("in.bag"), rosbag::bagmode::Write);
+    for (int k = 0; k <= 400; ++k) {  // 0 .. 1 s
+      sensor_msgs::Imu msg;
+      msg.header.stamp = ros::Time(kStart + k / 400.0);
+      msg.angular_velocity.x = gyro_x(k / 400.0);
+      bag.write(openloris.topics.imu, msg.header.stamp, msg);
+    }
+    for (int k = 1; k <= 200; ++k) {  // 0.004 .. 0.8 s
+      sensor_msgs::Imu msg;
+      msg.header.stamp = ros::Time(kStart + k / 250.0);
+      msg.linear_acceleration.z = accel_z(k / 250.0);
+      bag.write(openloris.topics.accel, msg.header.stamp, msg);
+    }
+    const ros::Time stamp(kStart + 0.4);
+    bag.write(openloris.topics.image, stamp, colourImage("rgb8", stamp, cv::Scalar(1, 2, 3)));
+    geometry_msgs::PoseStamped pose;
+    pose.header.stamp = stamp;
+    pose.pose.orientation.w = 1;
+    bag.write(openloris.topics.groundtruth, stamp, pose);
+  }
+  BagImportOptions opt = options(dir);
+  opt.topics = openloris.topics;
+  opt.imu_rate_hz = 0;
+  const BagImportCounts counts = importBag(opt);
+  // The stamps of either sensor within 0.004 .. 0.8 s (both cover it): gyroscope k = 2..320,
+  // accelerometer k = 1..200, 40 of them shared (the multiples of 20 ms).
+  EXPECT_EQ(counts.imu, 319u + 200u - 40u);
+  EXPECT_EQ(counts.groundtruth, 1u);
+  RawlogReader reader(dir.file("out.rawlog"));
+  size_t imu = 0;
+  double last = -1;
+  for (auto obs = reader.next(); obs; obs = reader.next()) {
+    if (obs->sensorLabel != "IMU") continue;
+    const ImuSample s = toImuSample(dynamic_cast<const mrpt::obs::CObservationIMU&>(*obs), reader);
+    const double t = s.t - kStart;
+    EXPECT_GT(t, last);
+    last = t;
+    EXPECT_GE(t, 0.004 - 1e-6);
+    EXPECT_LE(t, 0.8 + 1e-6);
+    EXPECT_NEAR(s.gyro.x(), gyro_x(t), 1e-5) << t;
+    EXPECT_NEAR(s.accel.z(), accel_z(t), 1e-5) << t;
+    ++imu;
+  }
+  EXPECT_EQ(imu, counts.imu);
 }
 
 /// importBag's InputError text, and that nothing was written.
