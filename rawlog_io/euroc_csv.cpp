@@ -2,6 +2,7 @@
 
 #include "common/input_error.h"
 #include "common/text_table.h"
+#include "rawlog_io/nanosecond_stamps.h"
 
 namespace rpvio {
 namespace {
@@ -18,7 +19,7 @@ std::vector<ImuSample> readEurocImuCsv(const std::string& csv) {
   forEachTextRow(csv, [&](const std::vector<std::string>& f, int line) {
     const auto v = parseNumberRow(f, 7, 7, csv, line);
     ImuSample s;
-    s.t = v[0] * 1e-9;
+    s.t = secondsOfNanosecondText(f[0], csv, line);
     checkIncreasing(s.t, samples.empty() ? 0 : samples.back().t, csv, line, samples.empty());
     s.gyro = {v[1], v[2], v[3]};
     s.accel = {v[4], v[5], v[6]};
@@ -32,7 +33,7 @@ std::vector<EurocStateSample> readEurocStateCsv(const std::string& csv) {
   forEachTextRow(csv, [&](const std::vector<std::string>& f, int line) {
     const auto v = parseNumberRow(f, 17, 17, csv, line);
     EurocStateSample s;
-    s.t = v[0] * 1e-9;
+    s.t = secondsOfNanosecondText(f[0], csv, line);
     checkIncreasing(s.t, states.empty() ? 0 : states.back().t, csv, line, states.empty());
     s.p = {v[1], v[2], v[3]};
     s.q = unitQuaternion(v[4], v[5], v[6], v[7], csv, line);

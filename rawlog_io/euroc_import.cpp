@@ -13,6 +13,7 @@
 #include "common/text_table.h"
 #include "rawlog_io/calibration.h"
 #include "rawlog_io/euroc_csv.h"
+#include "rawlog_io/nanosecond_stamps.h"
 #include "rawlog_io/rawlog_writer.h"
 #include "rawlog_io/trajectory_io.h"
 
@@ -75,10 +76,15 @@ Eigen::Isometry3d yamlTransform(const std::string& path) {
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 4; ++c) m(r, c) = d[4 * r + c];
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  // Re-orthonormalize the rotation (the files print ~12 digits).
-  Eigen::JacobiSVD<Eigen::Matrix3d> svd(m.topLeftCorner<3, 3>(),
-                                        Eigen::ComputeFullU | Eigen::ComputeFullV);
-  T.linear() = svd.matrixU() * svd.matrixV().transpose();
+  // Re-orthonormalize the rotation (the files print ~12 digits); one written with every digit
+  // (rpvio-export euroc) is kept as it is.
+  const Eigen::Matrix3d R = m.topLeftCorner<3, 3>();
+  if ((R.transpose() * R - Eigen::Matrix3d::Identity()).norm() < 1e-14) {
+    T.linear() = R;
+  } else {
+    Eigen::JacobiSVD<Eigen::Matrix3d> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    T.linear() = svd.matrixU() * svd.matrixV().transpose();
+  }
   T.translation() = m.topRightCorner<3, 1>();
   return T;
 }
@@ -94,7 +100,7 @@ std::vector<ImageEntry> readImageList(const std::string& mav0) {
   forEachTextRow(csv, [&](const std::vector<std::string>& f, int line) {
     if (f.size() != 2)
       throw InputError(csv, "line " + std::to_string(line), "expected 'timestamp,filename'");
-    const double t = parseFiniteNumber(f[0], csv, line) * 1e-9;
+    const double t = secondsOfNanosecondText(f[0], csv, line);
     if (!images.empty() && t <= images.back().t)
       throw InputError(csv, "line " + std::to_string(line), "timestamps not increasing");
     images.push_back({t, f[1]});
@@ -136,6 +142,8 @@ Calibration readEurocCalibration(const std::string& mav0) {
   }
   const auto d = yamlNumbers(cam_yaml, "distortion_coefficients", 4);
   std::copy(d.begin(), d.end(), c.camera.distortion.begin());
+  if (std::all_of(d.begin(), d.end(), [](double x) { return x == 0; }))
+    c.camera.model = DistortionModel::None;  // the same camera, without the undistortion step
   // T_BC = T_B_imu^-1 * T_B_cam, both given in the MAV body frame.
   c.T_BC = yamlTransform(imu_yaml).inverse() * yamlTransform(cam_yaml);
   c.imu.gyro_noise_density = yamlNumbers(imu_yaml, "gyroscope_noise_density", 1)[0];
