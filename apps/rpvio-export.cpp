@@ -11,8 +11,8 @@ namespace {
 const char* kUsage =
     "usage: rpvio-export euroc --rawlog FILE.rawlog --out DIR\n"
     "  An EuRoC (ASL) folder: DIR/mav0/cam0, imu0, state_groundtruth_estimate0 (velocity by\n"
-    "  central differences, biases 0) with sensor.yaml files, the masks in DIR/masks/. Read back\n"
-    "  with: rpvio-import euroc --mav0 DIR/mav0 --masks DIR/masks --gt DIR/mav0/\n"
+    "  central differences, biases 0) with sensor.yaml files, masks (if any) in DIR/masks/. Read\n"
+    "  back with: rpvio-import euroc --mav0 DIR/mav0 [--masks DIR/masks] --gt DIR/mav0/\n"
     "  state_groundtruth_estimate0/data.csv\n"
     "usage: rpvio-export rosbag --rawlog FILE.rawlog --out FILE.bag\n"
     "  A ROS1 bag in the RP-VIO simulated-warehouse layout: /image (mono8), /mask (mono8, plane\n"

@@ -1,5 +1,6 @@
 #include "rawlog_io/euroc_export.h"
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
@@ -85,10 +86,15 @@ std::string groundTruthCsv(const std::vector<TimedPose>& poses) {
 
 EurocExportCounts exportEuroc(const std::string& rawlog_path, const std::string& out_dir,
                               const std::function<void(size_t)>& progress) {
-  if (fs::exists(out_dir)) throw InputError(out_dir, "", "exists (the export makes a new folder)");
+  fs::path out = fs::path(out_dir).lexically_normal();
+  if (out.filename().empty()) out = out.parent_path();  // "DIR/"
+  if (fs::exists(out)) throw InputError(out_dir, "", "exists (the export makes a new folder)");
   const fs::path calib_path = fs::path(rawlog_path).parent_path() / "calib.ini";
   const Calibration calib = loadCalibration(calib_path.string());
-  const fs::path tmp = out_dir + ".partial";
+  // EuRoC has no camera-IMU time offset: the camera stamps go onto the IMU clock
+  // (t_imu = t_cam + offset) and the folder describes a synchronized sensor.
+  const int64_t camera_shift_ns = std::llround(calib.time_offset * 1e9);
+  const fs::path tmp = out.string() + ".partial";
   fs::remove_all(tmp);
   const fs::path cam = tmp / "mav0" / "cam0", imu_dir = tmp / "mav0" / "imu0",
                  masks = tmp / "masks";
@@ -103,19 +109,23 @@ EurocExportCounts exportEuroc(const std::string& rawlog_path, const std::string&
     std::vector<TimedPose> groundtruth;
     int64_t first_image = 0, last_image = 0;
     for (auto obs = reader.next(); obs; obs = reader.next()) {
-      const int64_t ns = toNanoseconds(obs->timestamp);
       const std::string& label = obs->sensorLabel;
+      const bool camera = label == labels::kCamera || label == labels::kPlaneMask;
+      const int64_t ns = toNanoseconds(obs->timestamp) + (camera ? camera_shift_ns : 0);
+      const std::string where = "entry " + std::to_string(reader.entriesRead());
       if (label == labels::kImu) {
-        const ImuSample s =
-            toImuSample(dynamic_cast<const mrpt::obs::CObservationIMU&>(*obs), reader);
+        const auto* imu_obs = dynamic_cast<const mrpt::obs::CObservationIMU*>(obs.get());
+        if (!imu_obs) throw InputError(rawlog_path, where, "an IMU entry of another type");
+        const ImuSample s = toImuSample(*imu_obs, reader);
         imu_csv << ns << ","
                 << numbers(
                        {s.gyro.x(), s.gyro.y(), s.gyro.z(), s.accel.x(), s.accel.y(), s.accel.z()})
                 << "\n";
         ++counts.imu;
-      } else if (label == labels::kCamera || label == labels::kPlaneMask) {
-        const cv::Mat pixels =
-            loadGrayImage(dynamic_cast<const mrpt::obs::CObservationImage&>(*obs), reader);
+      } else if (camera) {
+        const auto* image = dynamic_cast<const mrpt::obs::CObservationImage*>(obs.get());
+        if (!image) throw InputError(rawlog_path, where, "a " + label + " entry not an image");
+        const cv::Mat pixels = loadGrayImage(*image, reader);
         const bool mask = label == labels::kPlaneMask;
         const fs::path file = (mask ? masks : cam / "data") / (std::to_string(ns) + ".png");
         if (!cv::imwrite(file.string(), pixels))
@@ -128,8 +138,9 @@ EurocExportCounts exportEuroc(const std::string& rawlog_path, const std::string&
           last_image = ns;
         }
       } else if (label == labels::kGroundTruth) {
-        groundtruth.push_back(
-            {ns, toStampedPose(dynamic_cast<const mrpt::obs::CObservationRobotPose&>(*obs))});
+        const auto* pose = dynamic_cast<const mrpt::obs::CObservationRobotPose*>(obs.get());
+        if (!pose) throw InputError(rawlog_path, where, "a ground-truth entry not a pose");
+        groundtruth.push_back({ns, toStampedPose(*pose)});
         ++counts.groundtruth;
       }
       if (progress && reader.entriesRead() % 2000 == 0) progress(reader.entriesRead());
@@ -144,11 +155,12 @@ EurocExportCounts exportEuroc(const std::string& rawlog_path, const std::string&
       writeText(tmp / "mav0" / "state_groundtruth_estimate0" / "data.csv",
                 groundTruthCsv(groundtruth));
     }
+    if (counts.masks == 0) fs::remove(masks);
+    fs::rename(tmp, out);
   } catch (...) {
     fs::remove_all(tmp);
     throw;
   }
-  fs::rename(tmp, out_dir);
   return counts;
 }
 

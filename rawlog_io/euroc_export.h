@@ -3,7 +3,9 @@
 // OUT/mav0/cam0 (data/<ns>.png, data.csv, sensor.yaml), OUT/mav0/imu0 (data.csv, sensor.yaml),
 // OUT/mav0/state_groundtruth_estimate0/data.csv when the rawlog has ground truth (velocity by
 // central differences, biases 0: a rawlog has none), and the plane masks as OUT/masks/<ns>.png
-// (the layout `rpvio-import euroc --masks` reads). Every number with all its digits.
+// (the layout `rpvio-import euroc --masks` reads; no masks folder when the rawlog has none).
+// Camera stamps are moved onto the IMU clock by calib.ini's time offset (EuRoC has none). Every
+// number with all its digits.
 #include <functional>
 #include <string>
 

@@ -1,6 +1,7 @@
 #include "rawlog_io/nanosecond_stamps.h"
 
 #include <cmath>
+#include <limits>
 
 #include "common/input_error.h"
 #include "rawlog_io/rawlog_reader.h"
@@ -40,9 +41,10 @@ double secondsOfNanosecondText(const std::string& text, const std::string& path,
   } catch (const std::exception&) {
     used = 0;
   }
-  if (used == 0 || text.find_first_not_of(" \t\r", used) != std::string::npos)
+  if (used == 0 || text.find_first_not_of(" \t\r", used) != std::string::npos || ns < 0 ||
+      ns > std::numeric_limits<int64_t>::max() / 2)
     throw InputError(path, "line " + std::to_string(line),
-                     "'" + text + "' is not a timestamp in nanoseconds");
+                     "'" + text + "' is not a timestamp in nanoseconds since 1970");
   return secondsOfNanoseconds(ns);
 }
 

@@ -62,28 +62,41 @@ BagExportCounts exportBag(const std::string& rawlog_path, const std::string& bag
     bag.setCompression(rosbag::compression::LZ4);
     for (auto obs = reader.next(); obs; obs = reader.next()) {
       const std::string& label = obs->sensorLabel;
+      const std::string where = "entry " + std::to_string(reader.entriesRead());
       if (label == labels::kImu) {
-        const ImuSample s =
-            toImuSample(dynamic_cast<const mrpt::obs::CObservationIMU&>(*obs), reader);
+        const auto* imu = dynamic_cast<const mrpt::obs::CObservationIMU*>(obs.get());
+        if (!imu) throw InputError(rawlog_path, where, "an IMU entry of another type");
+        const ImuSample s = toImuSample(*imu, reader);
         const sensor_msgs::Imu msg = imuMessage(s, rosStamp(obs->timestamp));
         bag.write("/imu", recordTime(msg.header.stamp), msg);
         ++counts.imu;
       } else if (label == labels::kCamera || label == labels::kPlaneMask) {
-        const auto& image = dynamic_cast<const mrpt::obs::CObservationImage&>(*obs);
-        const cv::Mat pixels = loadGrayImage(image, reader);
+        const auto* image = dynamic_cast<const mrpt::obs::CObservationImage*>(obs.get());
+        if (!image) throw InputError(rawlog_path, where, "a " + label + " entry not an image");
+        const cv::Mat pixels = loadGrayImage(*image, reader);
         const bool mask = label == labels::kPlaneMask;
         const sensor_msgs::Image msg =
             mono8RosImage(mask ? planeIds(pixels) : pixels, rosStamp(obs->timestamp));
         bag.write(mask ? "/mask" : "/image", recordTime(msg.header.stamp), msg);
         ++(mask ? counts.masks : counts.images);
       } else if (label == labels::kGroundTruth) {
-        groundtruth.push_back(
-            toStampedPose(dynamic_cast<const mrpt::obs::CObservationRobotPose&>(*obs)));
+        const auto* pose = dynamic_cast<const mrpt::obs::CObservationRobotPose*>(obs.get());
+        if (!pose) throw InputError(rawlog_path, where, "a ground-truth entry not a pose");
+        groundtruth.push_back(toStampedPose(*pose));
         ++counts.groundtruth;
       }
       if (progress && reader.entriesRead() % 2000 == 0) progress(reader.entriesRead());
     }
     bag.close();
+    // Beside the bag, for `rpvio-import rosbag --preset rpvio-sim` (which takes groundtruth.txt
+    // when it is there: an older one must not stay).
+    if (!groundtruth.empty())
+      writeTum((bag_dir / "groundtruth.txt").string(), groundtruth);
+    else
+      fs::remove(bag_dir / "groundtruth.txt");
+    if (!fs::exists(bag_dir / "calib.ini") || !fs::equivalent(calib, bag_dir / "calib.ini"))
+      fs::copy_file(calib, bag_dir / "calib.ini", fs::copy_options::overwrite_existing);
+    fs::rename(temporary, bag_path);
   } catch (const rosbag::BagException& e) {
     fs::remove(temporary);
     throw InputError(bag_path, "", std::string("cannot write the bag: ") + e.what());
@@ -91,10 +104,6 @@ BagExportCounts exportBag(const std::string& rawlog_path, const std::string& bag
     fs::remove(temporary);
     throw;
   }
-  if (!groundtruth.empty()) writeTum((bag_dir / "groundtruth.txt").string(), groundtruth);
-  if (!fs::exists(bag_dir / "calib.ini") || !fs::equivalent(calib, bag_dir / "calib.ini"))
-    fs::copy_file(calib, bag_dir / "calib.ini", fs::copy_options::overwrite_existing);
-  fs::rename(temporary, bag_path);
   return counts;
 }
 

@@ -257,9 +257,9 @@ BagImportCounts importBag(const BagImportOptions& opt,
     double last_image_t = -INFINITY;
     auto writeImage = [&](const ros::Time& stamp, const cv::Mat& image, const cv::Mat* mask) {
       const double t = rawlogSeconds(stamp);
-      if (t < last_image_t)
+      if (t <= last_image_t)
         throw InputError(path, opt.topics.image + " at " + timeText(stamp),
-                         "image stamps go backwards (the previous one is later)");
+                         "image stamps go backwards or repeat (the previous one is not earlier)");
       last_image_t = t;
       writeSensorsUntil(t);
       writer.addImage(t, image);
@@ -299,8 +299,8 @@ BagImportCounts importBag(const BagImportOptions& opt,
           writeImagesBefore(stamp);
           writeImage(stamp, image, &mask->second);
           waiting_masks.erase(mask);
-        } else {
-          waiting_images[stamp] = image;
+        } else if (!waiting_images.emplace(stamp, image).second) {
+          throw InputError(path, where, "a second image stamped " + timeText(stamp));
         }
       } else {
         cv::Mat mask = opt.mask_colours.empty()
@@ -329,6 +329,8 @@ BagImportCounts importBag(const BagImportOptions& opt,
     writer.close();
   } catch (const rosbag::BagException& e) {
     throw InputError(path, "", std::string("not a readable ROS1 bag: ") + e.what());
+  } catch (const ros::Exception& e) {  // a message body shorter than its type (truncated)
+    throw InputError(path, "", std::string("a message cannot be read: ") + e.what());
   }
   return counts;
 }

@@ -12,6 +12,7 @@ cv::Mat pixels(const sensor_msgs::Image& msg, int type, const std::string& file,
                const std::string& where) {
   const size_t row_bytes = static_cast<size_t>(msg.width) * CV_ELEM_SIZE(type);
   if (msg.width == 0 || msg.height == 0 || msg.step < row_bytes ||
+      msg.step % CV_ELEM_SIZE1(type) != 0 ||
       msg.data.size() < static_cast<size_t>(msg.step) * msg.height)
     throw InputError(file, where,
                      "image data of " + std::to_string(msg.data.size()) + " bytes does not hold " +

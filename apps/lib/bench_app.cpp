@@ -291,6 +291,11 @@ int run(int argc, char** argv) {
         loadPlan(cli.value("collect"), std::vector<std::string>(argv + 1, argv + argc));
     if (cli.has("resubmit-failed")) {
       const auto failed = unfinished(plan.slam_tasks, allIndices(plan.slam_tasks.size()));
+      const auto queued = stillQueued(plan, "rpvio-slam", failed);
+      if (!queued.empty())
+        throw UsageError(
+            std::to_string(queued.size()) + " run(s) still pending or running on Slurm (e.g. " +
+            plan.slam_tasks[queued.front()].name + "): collect without --resubmit-failed, or wait");
       std::fprintf(stderr, "rpvio-bench: running %zu failed or unfinished run(s) again\n",
                    failed.size());
       if (!failed.empty() && !execute(plan, false, failed, cli.has("submit-only"))) return 0;

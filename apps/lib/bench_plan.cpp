@@ -143,6 +143,9 @@ void savePlan(const CommandLine& cli, const BenchPlan& plan) {
     for (const std::string& a : savedArguments(cli, plan)) out << a << "\n";
   });
   fs::remove(plan.out / "bench" / "jobs.tsv");
+  // A task that never starts (cancelled while pending) must not report an earlier run's status.
+  for (const auto* tasks : {&plan.sim_tasks, &plan.slam_tasks})
+    for (const BenchTask& task : *tasks) fs::remove(task.status);
   writeManifest(manifestPath(plan, "rpvio-sim").string(), plan.sim_tasks);
   writeManifest(manifestPath(plan, "rpvio-slam").string(), plan.slam_tasks);
 }
@@ -196,6 +199,20 @@ std::vector<size_t> unfinished(const std::vector<BenchTask>& tasks,
     if (!status || status->exit_code != 0) out.push_back(k);
   }
   return out;
+}
+
+std::vector<size_t> stillQueued(const BenchPlan& plan, const std::string& kind,
+                                const std::vector<size_t>& indices) {
+  std::vector<size_t> queued;
+  for (size_t k : indices) {
+    const std::string job = jobOfTask(plan, kind, k);
+    if (job.empty()) continue;
+    const std::string state = taskState(job, k);
+    if (state == "PENDING" || state == "RUNNING" || state == "CONFIGURING" ||
+        state == "COMPLETING" || state == "REQUEUED" || state == "SUSPENDED")
+      queued.push_back(k);
+  }
+  return queued;
 }
 
 std::string taskReport(const BenchPlan& plan, const std::string& kind,

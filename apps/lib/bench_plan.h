@@ -47,6 +47,9 @@ std::vector<size_t> allIndices(size_t count);
 /// The tasks of `tasks` (by index) that failed or have not finished.
 std::vector<size_t> unfinished(const std::vector<BenchTask>& tasks,
                                const std::vector<size_t>& indices);
+/// The tasks of `indices` whose last Slurm job still has them pending or running.
+std::vector<size_t> stillQueued(const BenchPlan& plan, const std::string& kind,
+                                const std::vector<size_t>& indices);
 /// What went wrong with task k of `kind`: exit code or Slurm state, and where its logs are.
 std::string taskReport(const BenchPlan& plan, const std::string& kind,
                        const std::vector<BenchTask>& tasks, size_t k);

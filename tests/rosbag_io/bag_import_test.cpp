@@ -309,6 +309,18 @@ TEST(BagImport, BadInputIsOneErrorAndNoOutput) {
   EXPECT_NE(order.find("/imu0 message 3: stamp t=1600000000.00"), std::string::npos) << order;
   EXPECT_NE(order.find("is not after the previous one"), std::string::npos) << order;
 
+  test::TempDir twice;
+  {
+    rosbag::Bag bag(twice.file("in.bag"), rosbag::bagmode::Write);
+    const ros::Time stamp(kStart);
+    bag.write("/imu0", stamp, imuMessage(stamp, 0));
+    for (int k = 0; k < 2; ++k)
+      bag.write("/cam0/image_raw", stamp, colourImage("mono8", stamp, cv::Scalar(k)));
+  }
+  opt = options(twice);
+  opt.topics.mask.clear();
+  EXPECT_NE(importError(opt).find("image stamps go backwards or repeat"), std::string::npos);
+
   test::TempDir truncated;
   writeBag(truncated.file("in.bag"), "mono8", rosbag::compression::Uncompressed);
   fs::resize_file(truncated.file("in.bag"), fs::file_size(truncated.file("in.bag")) / 2);
