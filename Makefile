@@ -50,7 +50,7 @@ fuzz:
 	@scripts/fuzz.sh build-fuzz $(FUZZ_SECONDS) $(JOBS)
 
 format:
-	find common rawlog_io sim planes_map mrpt_modules evaluation apps tests benchmarks -name '*.h' -o -name '*.cpp' | xargs clang-format -i
+	git ls-files '*.h' '*.cpp' | xargs clang-format -i
 
 clean:
 	rm -rf $(BUILD_DIR) build-asan build-fuzz

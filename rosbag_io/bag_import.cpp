@@ -1,10 +1,10 @@
 #include "rosbag_io/bag_import.h"
 
+#include <geometry_msgs/PoseStamped.h>
+#include <nav_msgs/Odometry.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <sensor_msgs/Image.h>
-#include <geometry_msgs/PoseStamped.h>
-#include <nav_msgs/Odometry.h>
 #include <sensor_msgs/Imu.h>
 
 #include <cmath>
@@ -49,7 +49,8 @@ void requireTopic(const rosbag::Bag& bag, const std::string& path, const std::st
                   const std::string& type, const std::string& other_type = "") {
   rosbag::View view(bag, rosbag::TopicQuery(topic));
   if (view.size() == 0)
-    throw InputError(path, "", "no messages on " + topic + " (the bag has: " + topicList(bag) + ")");
+    throw InputError(path, "",
+                     "no messages on " + topic + " (the bag has: " + topicList(bag) + ")");
   for (const rosbag::ConnectionInfo* c : view.getConnections())
     if (c->datatype != type && c->datatype != other_type)
       throw InputError(path, "",
@@ -72,8 +73,7 @@ std::vector<ImuSample> readImuTopic(const rosbag::Bag& bag, const std::string& p
       throw InputError(path, where,
                        "stamp " + timeText(msg->header.stamp) + " is not after the previous one");
     s.gyro = {msg->angular_velocity.x, msg->angular_velocity.y, msg->angular_velocity.z};
-    s.accel = {msg->linear_acceleration.x, msg->linear_acceleration.y,
-               msg->linear_acceleration.z};
+    s.accel = {msg->linear_acceleration.x, msg->linear_acceleration.y, msg->linear_acceleration.z};
     if (!s.gyro.allFinite() || !s.accel.allFinite())
       throw InputError(path, where, "angular velocity or acceleration is not finite");
     samples.push_back(s);
@@ -98,8 +98,8 @@ std::vector<ImuSample> mergeSplitImu(const std::vector<ImuSample>& gyro,
     return (1 - w) * (v[next - 1].*value) + w * (v[next].*value);
   };
   while (g < gyro.size() || a < accel.size()) {
-    const double t = std::min(g < gyro.size() ? gyro[g].t : INFINITY,
-                              a < accel.size() ? accel[a].t : INFINITY);
+    const double t =
+        std::min(g < gyro.size() ? gyro[g].t : INFINITY, a < accel.size() ? accel[a].t : INFINITY);
     const bool gyro_here = g < gyro.size() && gyro[g].t == t,
                accel_here = a < accel.size() && accel[a].t == t;
     if (t >= begin && t <= end) {
@@ -156,8 +156,7 @@ Trajectory readGroundTruthTopic(const rosbag::Bag& bag, const std::string& path,
       throw InputError(path, where,
                        "stamp " + timeText(header.stamp) + " is not after the previous one");
     pose.p = Eigen::Vector3d(p.position.x, p.position.y, p.position.z);
-    pose.q = Eigen::Quaterniond(p.orientation.w, p.orientation.x, p.orientation.y,
-                                p.orientation.z);
+    pose.q = Eigen::Quaterniond(p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z);
     if (!pose.p.allFinite() || !(std::abs(pose.q.norm() - 1) < 1e-3))
       throw InputError(path, where, "position not finite or orientation not a unit quaternion");
     pose.q.normalize();
@@ -186,8 +185,7 @@ BagPreset bagPreset(const std::string& name) {
     return preset;  // ground, wall, road
   }
   if (name == "openloris") {  // masks: --mask-topic (the RP-VIO authors': /planes/segments_crf)
-    preset.topics = {"/d400/color/image_raw", "/d400/gyro/sample", "", "/gt",
-                     "/d400/accel/sample"};
+    preset.topics = {"/d400/color/image_raw", "/d400/gyro/sample", "", "/gt", "/d400/accel/sample"};
     preset.imu_rate_hz = 200;
     return preset;
   }
@@ -216,7 +214,8 @@ BagImportCounts importBag(const BagImportOptions& opt,
   if (!fs::is_regular_file(path)) throw InputError(path, "", "file not found");
   const fs::path out(opt.output_rawlog);
   const fs::path out_dir = out.has_parent_path() ? out.parent_path() : fs::path(".");
-  if (!fs::is_directory(out_dir)) throw InputError(opt.output_rawlog, "", "output folder not found");
+  if (!fs::is_directory(out_dir))
+    throw InputError(opt.output_rawlog, "", "output folder not found");
   BagImportCounts counts;
   try {
     rosbag::Bag bag(path, rosbag::bagmode::Read);
@@ -314,8 +313,8 @@ BagImportCounts importBag(const BagImportOptions& opt,
           waiting_masks[stamp] = mask;
         }
       }
-      while (waiting_images.size() > kMaxWaitingImages) writeImagesBefore(
-          std::next(waiting_images.begin())->first);
+      while (waiting_images.size() > kMaxWaitingImages)
+        writeImagesBefore(std::next(waiting_images.begin())->first);
       while (waiting_masks.size() > kMaxWaitingImages) {
         waiting_masks.erase(waiting_masks.begin());
         ++counts.unpaired_masks;

@@ -3,8 +3,9 @@
 // topic → CAM0 (any encoding of ros_image.h, made grey), an optional mask topic → PLANE_MASK
 // (mono8, value = plane id, 0 = none; paired with the image of identical header stamp), a
 // sensor_msgs/Imu topic → IMU (optionally decimated by timestamp), an optional TUM file or
-// nav_msgs/Odometry or geometry_msgs/PoseStamped topic → GROUND_TRUTH. Header stamps, not record times. Streams: only the IMU and the ground truth are
-// held in memory, and images waiting for their mask.
+// nav_msgs/Odometry or geometry_msgs/PoseStamped topic → GROUND_TRUTH. Header stamps, not record
+// times. Streams: only the IMU and the ground truth are held in memory, and images waiting for
+// their mask.
 #include <functional>
 #include <optional>
 #include <string>
@@ -17,7 +18,7 @@ namespace rpvio {
 
 struct BagTopics {
   std::string image, imu, mask;  // mask "" = none
-  std::string groundtruth;  // nav_msgs/Odometry or geometry_msgs/PoseStamped, "" = none
+  std::string groundtruth;       // nav_msgs/Odometry or geometry_msgs/PoseStamped, "" = none
   // An accelerometer publishing apart from the gyroscope (`imu` then gives the angular velocity
   // only); merged into one stream, each sensor interpolated at the other's samples. "" = none.
   std::string accel;
@@ -44,7 +45,7 @@ struct BagImportOptions {
   BagTopics topics;
   Calibration calibration;
   double imu_rate_hz = 0;
-  std::string groundtruth_file;  // TUM, optional
+  std::string groundtruth_file;          // TUM, optional
   std::vector<MaskColour> mask_colours;  // empty: masks are mono8 plane ids
 };
 

@@ -41,9 +41,9 @@ cv::Mat grayFromRosImage(const sensor_msgs::Image& msg, const std::string& file,
       throw InputError(file, where, "big-endian mono16 images are not supported");
     pixels(msg, CV_16UC1, file, where).convertTo(gray, CV_8U, 1.0 / 256);
   } else {
-    throw InputError(file, where,
-                     "image encoding '" + e +
-                         "' is not supported (mono8, rgb8, bgr8, rgba8, bgra8, mono16)");
+    throw InputError(
+        file, where,
+        "image encoding '" + e + "' is not supported (mono8, rgb8, bgr8, rgba8, bgra8, mono16)");
   }
   return gray;
 }
@@ -59,15 +59,15 @@ cv::Mat labelsFromRosImage(const sensor_msgs::Image& msg, const std::string& fil
 cv::Mat labelsFromColours(const sensor_msgs::Image& msg, const std::vector<MaskColour>& colours,
                           const std::string& file, const std::string& where) {
   if (msg.encoding != "rgb8" && msg.encoding != "bgr8")
-    throw InputError(file, where,
-                     "a segmentation must be rgb8 or bgr8 (class colours), not '" + msg.encoding +
-                         "'");
+    throw InputError(
+        file, where,
+        "a segmentation must be rgb8 or bgr8 (class colours), not '" + msg.encoding + "'");
   const cv::Mat image = pixels(msg, CV_8UC3, file, where);
   const bool rgb = msg.encoding == "rgb8";
   cv::Mat labels(image.size(), CV_8UC1, cv::Scalar(0));
   for (const MaskColour& c : colours) {
-    const cv::Vec3b colour = rgb ? cv::Vec3b(c.rgb[0], c.rgb[1], c.rgb[2])
-                                 : cv::Vec3b(c.rgb[2], c.rgb[1], c.rgb[0]);
+    const cv::Vec3b colour =
+        rgb ? cv::Vec3b(c.rgb[0], c.rgb[1], c.rgb[2]) : cv::Vec3b(c.rgb[2], c.rgb[1], c.rgb[0]);
     cv::Mat is_class;
     cv::inRange(image, colour, colour, is_class);
     labels.setTo(c.plane_id, is_class);

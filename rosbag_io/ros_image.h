@@ -1,8 +1,8 @@
 #pragma once
 // sensor_msgs/Image to and from OpenCV, by the message's `encoding`.
-#include <opencv2/core.hpp>
 #include <sensor_msgs/Image.h>
 #include <array>
+#include <opencv2/core.hpp>
 #include <string>
 #include <vector>
 
