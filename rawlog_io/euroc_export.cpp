@@ -5,6 +5,7 @@
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 
+#include "common/atomic_file.h"
 #include "common/input_error.h"
 #include "common/options.h"
 #include "rawlog_io/calibration.h"
@@ -32,9 +33,7 @@ std::string matrixYaml(const Eigen::Isometry3d& T) {
 }
 
 void writeText(const fs::path& path, const std::string& text) {
-  std::ofstream out(path);
-  out << text;
-  if (!out) throw std::runtime_error(path.string() + ": cannot write");
+  writeFileAtomically(path.string(), [&](std::ostream& out) { out << text; });
 }
 
 std::string cameraYaml(const Calibration& c, double rate_hz) {

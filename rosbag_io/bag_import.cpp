@@ -165,22 +165,29 @@ Trajectory readGroundTruthTopic(const rosbag::Bag& bag, const std::string& path,
   return poses;
 }
 
+/// A distortion-free camera looking along body x (camera z = body x, x = body y, y = body z), as
+/// the RP-VIO authors' configs mount it.
+Calibration presetCalibration(int width, int height, double f, double cx, double cy) {
+  Calibration c;
+  c.camera.width = width;
+  c.camera.height = height;
+  c.camera.fx = c.camera.fy = f;
+  c.camera.cx = cx;
+  c.camera.cy = cy;
+  c.T_BC.linear() << 0, 0, 1,  //
+      1, 0, 0,                 //
+      0, 1, 0;
+  return c;  // IMU noise: ImuNoise's defaults (sensor_types.h)
+}
+
 }  // namespace
 
 BagPreset bagPreset(const std::string& name) {
   BagPreset preset;
   if (name == "generic") return preset;
-  const Eigen::Matrix3d R_BC = (Eigen::Matrix3d() << 0, 0, 1, 1, 0, 0, 0, 1, 0).finished();
   if (name == "viode") {
     preset.topics = {"/cam0/image_raw", "/imu0", "/cam0/segmentation", "/odometry", ""};
-    Calibration c;
-    c.camera.width = 752;
-    c.camera.height = 480;
-    c.camera.fx = c.camera.fy = 376;
-    c.camera.cx = 376;
-    c.camera.cy = 240;
-    c.T_BC.linear() = R_BC;
-    preset.calibration = c;  // IMU noise: ImuNoise's defaults (sensor_types.h)
+    preset.calibration = presetCalibration(752, 480, 376, 376, 240);
     preset.mask_colours = {{{179, 217, 227}, 1}, {{167, 128, 147}, 2}, {{235, 152, 233}, 3}};
     return preset;  // ground, wall, road
   }
@@ -193,16 +200,10 @@ BagPreset bagPreset(const std::string& name) {
     throw std::invalid_argument("unknown preset '" + name +
                                 "' (rpvio-sim, viode, openloris or generic)");
   preset.topics = {"/image", "/imu", "/mask", "", ""};
-  Calibration c;
-  c.camera.width = 640;
-  c.camera.height = 480;
-  c.camera.fx = c.camera.fy = 320;
-  c.camera.cx = 320;
-  c.camera.cy = 240;
-  c.T_BC.linear() = R_BC;
+  Calibration c = presetCalibration(640, 480, 320, 320, 240);
   c.T_BC.translation() = Eigen::Vector3d(0.5, 0, 0);
   c.time_offset = -0.0308;  // s, t_imu = t_cam + offset
-  preset.calibration = c;   // IMU noise: ImuNoise's defaults (sensor_types.h)
+  preset.calibration = c;
   preset.imu_rate_hz = 200;
   preset.groundtruth_beside_bag = "groundtruth.txt";
   return preset;

@@ -166,8 +166,27 @@ std::string evaluatedLine(const BenchRun& r) {
 
 /// Runs `indices` of the plan's simulations and then its SLAM runs (simulations: all or none),
 /// here or on Slurm. Returns false when only submitted.
+std::map<std::string, Trajectory> readGroundTruths(const BenchSetup& setup) {
+  std::map<std::string, Trajectory> gts;
+  for (const auto& s : setup.sequences)
+    gts[s] = readTum((fs::path(setup.suite_dir) / s / "groundtruth.tum").string());
+  return gts;
+}
+
+/// The run's exit code and wall time from its task's status, then its evaluation (evaluateRun).
+std::optional<eval::EvalResult> evaluateTask(BenchRun& run, const BenchTask& task,
+                                             const Trajectory& gt) {
+  const auto status = readTaskStatus(task);
+  run.exit_code = status ? status->exit_code : -1;
+  run.wall_s = status ? status->wall_s : 0;
+  auto evaluation = evaluateRun(run, gt);
+  if (!status) run.error = "did not finish";
+  return evaluation;
+}
+
 bool execute(BenchPlan& plan, bool simulate, const std::vector<size_t>& slam_indices,
              bool submit_only) {
+  std::string slam_job;  // Slurm's
   if (!plan.slurm) {
     if (simulate) {
       Progress progress("simulate", plan.sim_tasks.size());
@@ -186,47 +205,43 @@ bool execute(BenchPlan& plan, bool simulate, const std::vector<size_t>& slam_ind
                             (plan.out / "bench" / "logs").string());
       recordJob(plan, "rpvio-sim", sim_job, all);
     }
-    const std::string slam_job =
-        submitArray(plan.slurm_options, manifestPath(plan, "rpvio-slam"), slam_indices,
-                    "rpvio-slam", (plan.out / "bench" / "logs").string(), sim_job);
+    slam_job = submitArray(plan.slurm_options, manifestPath(plan, "rpvio-slam"), slam_indices,
+                           "rpvio-slam", (plan.out / "bench" / "logs").string(), sim_job);
     recordJob(plan, "rpvio-slam", slam_job, slam_indices);
     std::fprintf(stderr, "rpvio-bench: submitted %s%s job %s (%zu runs)\n",
                  sim_job.empty() ? "" : ("simulation job " + sim_job + " and ").c_str(), "SLAM",
                  slam_job.c_str(), slam_indices.size());
     if (submit_only) return false;
     if (simulate) waitForJob(plan.slurm_options, sim_job, "simulate", plan.sim_tasks.size());
-    if (!simulate || unfinished(plan.sim_tasks, allIndices(plan.sim_tasks.size())).empty())
-      waitForJob(plan.slurm_options, slam_job, "SLAM runs", slam_indices.size());
   }
-  std::string failures;
-  if (simulate)
+  if (simulate) {
+    std::string failures;
     for (size_t k : unfinished(plan.sim_tasks, allIndices(plan.sim_tasks.size())))
       failures += "\n  " + taskReport(plan, "rpvio-sim", plan.sim_tasks, k);
-  if (!failures.empty()) throw std::runtime_error("simulation failed:" + failures);
-  if (!plan.slurm) {
-    Progress progress("run", slam_indices.size());
-    runParallel(slam_indices.size(), plan.setup.jobs, [&](size_t i) {
-      const size_t k = slam_indices[i];
-      runTask(plan.slam_tasks[k]);
-      BenchRun r = plan.runs[k];
-      const auto status = readTaskStatus(plan.slam_tasks[k]);
-      r.exit_code = status ? status->exit_code : -1;
-      r.wall_s = status ? status->wall_s : 0;
-      evaluateRun(
-          r, readTum((fs::path(plan.setup.suite_dir) / r.sequence / "groundtruth.tum").string()));
-      progress.done(evaluatedLine(r));
-    });
+    if (!failures.empty()) throw std::runtime_error("simulation failed:" + failures);
   }
+  if (plan.slurm) {
+    waitForJob(plan.slurm_options, slam_job, "SLAM runs", slam_indices.size());
+    return true;
+  }
+  const auto gts = readGroundTruths(plan.setup);
+  Progress progress("run", slam_indices.size());
+  runParallel(slam_indices.size(), plan.setup.jobs, [&](size_t i) {
+    const size_t k = slam_indices[i];
+    runTask(plan.slam_tasks[k]);
+    BenchRun r = plan.runs[k];
+    evaluateTask(r, plan.slam_tasks[k], gts.at(r.sequence));
+    progress.done(evaluatedLine(r));
+  });
   return true;
 }
 
 /// The report of every run that has finished; names the others on stderr.
 int collect(BenchPlan& plan, double wall_s) {
   BenchSetup& setup = plan.setup;
-  std::map<std::string, Trajectory> gts;
+  const auto gts = readGroundTruths(setup);
   for (const auto& s : setup.sequences) {
     const fs::path dir = fs::path(setup.suite_dir) / s;
-    gts[s] = readTum((dir / "groundtruth.tum").string());
     setup.dynamic_fraction[s] =
         fs::exists(dir / "sequence.json")
             ? jsonNumber(readText((dir / "sequence.json").string()), "dynamic_fraction_median")
@@ -235,11 +250,7 @@ int collect(BenchPlan& plan, double wall_s) {
   std::vector<std::optional<eval::EvalResult>> first_runs(plan.runs.size());  // for the plots
   for (size_t k = 0; k < plan.runs.size(); ++k) {
     BenchRun& r = plan.runs[k];
-    const auto status = readTaskStatus(plan.slam_tasks[k]);
-    r.exit_code = status ? status->exit_code : -1;
-    r.wall_s = status ? status->wall_s : 0;
-    auto evaluation = evaluateRun(r, gts.at(r.sequence));
-    if (!status) r.error = "did not finish";
+    auto evaluation = evaluateTask(r, plan.slam_tasks[k], gts.at(r.sequence));
     if (r.run == 0) first_runs[k] = std::move(evaluation);
   }
   const auto failed = unfinished(plan.slam_tasks, allIndices(plan.slam_tasks.size()));

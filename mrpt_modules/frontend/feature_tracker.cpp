@@ -101,8 +101,7 @@ std::vector<FeatureTracker::Track> FeatureTracker::propagate(const Pyramid& pyra
   cv::calcOpticalFlowPyrLK(pyramid, previous_pyramid_, to, back, back_status, cv::noArray(), window,
                            0, stop, cv::OPTFLOW_USE_INITIAL_FLOW, options_.klt_min_eigenvalue);
   const cv::Rect inside(1, 1, mask.cols - 2, mask.rows - 2);
-  const std::array<bool, 256> labelled =
-      options_.use_masks ? labelsIn(mask) : std::array<bool, 256>{};
+  std::optional<std::array<bool, 256>> labelled;  // the mask's labels, once a track needs them
   for (size_t i = 0; i < tracks_.size(); ++i) {
     if (!status[i] || !back_status[i] || !inside.contains(to[i])) continue;
     if (cv::norm(back[i] - from[i]) > options_.max_forward_backward_px) continue;
@@ -111,11 +110,13 @@ std::vector<FeatureTracker::Track> FeatureTracker::propagate(const Pyramid& pyra
     // its plane is missing from the mask, for a few frames at most.
     if (options_.use_masks) {
       const cv::Point at(cvRound(to[i].x), cvRound(to[i].y));
-      tr.frames_plane_missed = labelled[tr.plane_id] ? 0 : tr.frames_plane_missed + 1;
-      const bool on_plane = mask.at<uint8_t>(at) == tr.plane_id && trackable_.at<uint8_t>(at);
-      if (!on_plane &&
-          !(tr.frames_plane_missed > 0 && tr.frames_plane_missed <= options_.missed_plane_frames))
-        continue;
+      if (mask.at<uint8_t>(at) == tr.plane_id && trackable_.at<uint8_t>(at)) {
+        tr.frames_plane_missed = 0;
+      } else {
+        if (!labelled) labelled = labelsIn(mask);
+        if ((*labelled)[tr.plane_id] || ++tr.frames_plane_missed > options_.missed_plane_frames)
+          continue;
+      }
     }
     tr.from = tr.pixel;
     tr.pixel = to[i];

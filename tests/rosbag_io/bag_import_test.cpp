@@ -66,7 +66,7 @@ BagImportOptions options(const test::TempDir& dir) {
   BagImportOptions opt;
   opt.bag_path = dir.file("in.bag");
   opt.output_rawlog = dir.file("out.rawlog");
-  opt.topics = {"/cam0/image_raw", "/imu0", "/cam0/planes"};
+  opt.topics = {"/cam0/image_raw", "/imu0", "/cam0/planes", "", ""};
   opt.calibration = calibration();
   opt.imu_rate_hz = 200;
   return opt;
@@ -111,7 +111,9 @@ TEST(BagImport, EveryEncodingGivesGreyImagesPairedMasksAndADecimatedImu) {
     for (auto obs = reader.next(); obs; obs = reader.next()) {
       const double t = toSeconds(obs->timestamp) - kStart;
       if (obs->sensorLabel == "IMU") {
-        if (last_imu >= 0) EXPECT_NEAR(t - last_imu, 0.005, 1e-6);
+        if (last_imu >= 0) {
+          EXPECT_NEAR(t - last_imu, 0.005, 1e-6);
+        }
         last_imu = t;
       } else if (obs->sensorLabel == "CAM0") {
         EXPECT_NEAR(t, 0.1 + 0.2 * images++, 1e-6);

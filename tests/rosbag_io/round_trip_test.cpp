@@ -28,6 +28,23 @@ void expectSameRun(const std::string& direct, const std::string& back) {
   }
 }
 
+/// Runs `import_command` --out `back`/seq.rawlog, then rpvio-slam on it: every entry, the same
+/// calib.ini and the same run as on `direct`.
+void importAndCompare(const std::string& import_command, const std::string& direct,
+                      const std::string& back) {
+  std::string output;
+  ASSERT_EQ(
+      test::runCommand(
+          "mkdir -p " + back + " && " + import_command + " --out " + back + "/seq.rawlog", output),
+      0)
+      << output;
+  EXPECT_NE(output.find("101 CAM0, 101 PLANE_MASK, 1001 IMU, 1001 GROUND_TRUTH"), std::string::npos)
+      << output;
+  EXPECT_EQ(test::readFile(back + "/calib.ini"), test::readFile(direct + "/calib.ini"));
+  runSlam(back);
+  expectSameRun(direct, back);
+}
+
 class RoundTrip : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -58,17 +75,9 @@ TEST_F(RoundTrip, ThroughARosBag) {
   EXPECT_NE(output.find("101 /image, 101 /mask, 1001 /imu; 1001 ground-truth poses"),
             std::string::npos)
       << output;
-  ASSERT_EQ(test::runCommand(bin + "/rpvio-import rosbag --bag " + bag_dir +
-                                 "/seq.bag --preset rpvio-sim --calib " + bag_dir +
-                                 "/calib.ini --out " + back + "/seq.rawlog",
-                             output),
-            0)
-      << output;
-  EXPECT_NE(output.find("101 CAM0, 101 PLANE_MASK, 1001 IMU, 1001 GROUND_TRUTH"), std::string::npos)
-      << output;
-  EXPECT_EQ(test::readFile(back + "/calib.ini"), test::readFile(seq + "/calib.ini"));
-  runSlam(back);
-  expectSameRun(seq, back);
+  importAndCompare(bin + "/rpvio-import rosbag --bag " + bag_dir +
+                       "/seq.bag --preset rpvio-sim --calib " + bag_dir + "/calib.ini",
+                   seq, back);
 }
 
 TEST_F(RoundTrip, ThroughAnEurocFolder) {
@@ -84,18 +93,9 @@ TEST_F(RoundTrip, ThroughAnEurocFolder) {
                 bin + "/rpvio-export euroc --rawlog " + seq + "/seq.rawlog --out " + euroc, output),
             2)
       << output;
-  ASSERT_EQ(test::runCommand("mkdir -p " + back + " && " + bin + "/rpvio-import euroc --mav0 " +
-                                 euroc + "/mav0 --masks " + euroc + "/masks --gt " + euroc +
-                                 "/mav0/state_groundtruth_estimate0/data.csv --out " + back +
-                                 "/seq.rawlog",
-                             output),
-            0)
-      << output;
-  EXPECT_NE(output.find("101 CAM0, 101 PLANE_MASK, 1001 IMU, 1001 GROUND_TRUTH"), std::string::npos)
-      << output;
-  EXPECT_EQ(test::readFile(back + "/calib.ini"), test::readFile(seq + "/calib.ini"));
-  runSlam(back);
-  expectSameRun(seq, back);
+  importAndCompare(bin + "/rpvio-import euroc --mav0 " + euroc + "/mav0 --masks " + euroc +
+                       "/masks --gt " + euroc + "/mav0/state_groundtruth_estimate0/data.csv",
+                   seq, back);
 }
 
 }  // namespace
