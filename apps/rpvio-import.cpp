@@ -1,5 +1,6 @@
 // rpvio-import: converts a dataset into an rpvio rawlog (see rawlog_io/euroc_import.h).
 #include <unistd.h>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 
@@ -7,6 +8,7 @@
 #include <stdexcept>
 #include "apps/lib/command_line.h"
 
+#include "rawlog_io/advio_import.h"
 #include "rawlog_io/calibration.h"
 #include "rawlog_io/euroc_import.h"
 #include "rawlog_io/rawlog_summary.h"
@@ -51,6 +53,30 @@ rpvio::BagImportOptions bagOptions(const rpvio::apps::CommandLine& cli) {
   return opt;
 }
 
+rpvio::AdvioImportOptions advioOptions(const rpvio::apps::CommandLine& cli) {
+  using namespace rpvio;
+  AdvioImportOptions opt;
+  opt.sequence_dir = cli.value("seq");
+  opt.output_rawlog = cli.value("out");
+  const double every = cli.number("every", 1);
+  if (!(every >= 1) || every != std::floor(every))
+    throw apps::UsageError("--every: a whole number of frames, 1 or more");
+  opt.every = static_cast<int>(every);
+  try {
+    opt.rotation = frameRotationFromName(cli.valueOr("rotate", "cw"));
+  } catch (const std::invalid_argument& e) {
+    throw apps::UsageError(std::string("--rotate: ") + e.what());
+  }
+  if (cli.has("calib")) opt.calibration = loadCalibration(cli.value("calib"));
+  if (cli.valueOr("accel-scale", "auto") != "auto") {
+    opt.accel_scale = cli.number("accel-scale", 0);
+    if (!std::isfinite(*opt.accel_scale) || *opt.accel_scale == 0)
+      throw apps::UsageError("--accel-scale: auto or a nonzero factor (-9.80665: CoreMotion's g)");
+  }
+  opt.subtract_batch_bias = !cli.has("keep-bias");
+  return opt;
+}
+
 const char* kUsage =
     "usage: rpvio-import euroc --mav0 DIR [--gt FILE] [--masks DIR] --out FILE.rawlog\n"
     "  Converts an EuRoC (ASL) folder: cam0 images -> CAM0, imu0 -> IMU, optional masks folder\n"
@@ -68,8 +94,17 @@ const char* kUsage =
     "  rate (rpvio-sim: /image, /mask, /imu at 200 Hz, groundtruth.txt beside the bag; viode:\n"
     "  /cam0/image_raw, /imu0, /cam0/segmentation colours of ground, wall, road as planes 1-3,\n"
     "  /odometry as ground truth; openloris: /d400/color/image_raw, /d400/gyro/sample and\n"
-    "  /d400/accel/sample merged, /gt, --calib from the dataset's files); options override it;\n"
+    "  /d400/accel/sample merged, /gt, the market scenes' calibration); options override it;\n"
     "  generic needs every topic and --calib.\n"
+    "usage: rpvio-import advio --seq DIR [--every N] [--rotate cw|ccw|180|none] [--calib "
+    "calib.ini]\n"
+    "                   [--accel-scale auto|S] [--keep-bias] --out FILE.rawlog\n"
+    "  Converts an ADVIO sequence folder (advio-NN): iphone/frames.mov with the stamps of\n"
+    "  frames.csv -> CAM0 (grey, every N-th frame, turned upright: cw by default), iphone/\n"
+    "  accelerometer.csv and gyro.csv merged -> IMU (the batch's published biases subtracted\n"
+    "  unless --keep-bias; specific force = S x reading, S detected from the readings' size and\n"
+    "  direction unless given), ground-truth/pose.csv -> GROUND_TRUTH. Calibration: the batch\n"
+    "  of NN unless --calib; writes calib.ini beside the rawlog.\n"
     "usage: rpvio-import verify --rawlog FILE\n"
     "  Streams a rawlog, loading every image and IMU sample, and prints the counts per label.\n"
     "Exit code 2 on bad input, with a one-line message naming the file and position.\n";
@@ -81,8 +116,9 @@ int main(int argc, char** argv) {
     const apps::CommandLine cli(
         argc, argv,
         {"mav0", "gt", "masks", "out", "rawlog", "bag", "preset", "image-topic", "imu-topic",
-         "mask-topic", "gt-topic", "accel-topic", "calib", "imu-rate"},
-        {});
+         "mask-topic", "gt-topic", "accel-topic", "calib", "imu-rate", "seq", "every", "rotate",
+         "accel-scale"},
+        {"keep-bias"});
     const std::string command = cli.positional().size() == 1 ? cli.positional()[0] : "";
     if (command == "verify") {
       const auto summary = summarizeRawlog(cli.value("rawlog"));
@@ -108,8 +144,24 @@ int main(int argc, char** argv) {
                                         : "");
       return 0;
     }
+    if (command == "advio") {
+      const AdvioImportOptions opt = advioOptions(cli);
+      const AdvioImportCounts counts = importAdvio(opt, [&](size_t frames) {
+        if (terminal) std::fprintf(stderr, "\rimporting: %zu video frames read", frames);
+      });
+      if (terminal) std::fprintf(stderr, "\n");
+      std::printf("wrote %s: %zu CAM0, %zu IMU, %zu GROUND_TRUTH\n", opt.output_rawlog.c_str(),
+                  counts.images, counts.imu, counts.groundtruth);
+      std::printf("  calibration: %s; accelerometer: x %.5f (%s)\n",
+                  opt.calibration ? "--calib" : ("batch " + std::to_string(counts.batch)).c_str(),
+                  counts.accel_scale, counts.accel_scale_reason.c_str());
+      if (counts.frames_without_stamp || counts.stamps_without_frame)
+        std::printf("  %zu video frames without a stamp and %zu stamps without a frame dropped\n",
+                    counts.frames_without_stamp, counts.stamps_without_frame);
+      return 0;
+    }
     if (command != "euroc")
-      throw apps::UsageError("expected the command 'euroc', 'rosbag' or 'verify'");
+      throw apps::UsageError("expected the command 'euroc', 'rosbag', 'advio' or 'verify'");
     EurocImportOptions opt;
     opt.mav0_dir = cli.value("mav0");
     opt.output_rawlog = cli.value("out");

@@ -23,4 +23,11 @@ Calibration loadCalibration(const std::string& path);
 /// Writes to a temporary name and renames it when complete.
 void saveCalibration(const std::string& path, const Calibration& calibration);
 
+/// IMU noise given as discrete-time standard deviations per sample at `rate_hz` (the acc_n,
+/// gyr_n, acc_w, gyr_w of VINS-Mono-style configurations) as the continuous-time densities of
+/// calib.ini, Δt = 1 / rate_hz: white noise σ_c = σ_d √Δt, bias random walk σ_rw = σ_w / √Δt
+/// (Kalibr's convention; docs/datasets.md).
+ImuNoise imuNoiseFromDiscrete(double acc_n, double gyr_n, double acc_w, double gyr_w,
+                              double rate_hz, double gravity);
+
 }  // namespace rpvio

@@ -14,6 +14,8 @@
 
 #include "common/input_error.h"
 #include "rawlog_io/calibration.h"
+#include "rawlog_io/imu_streams.h"
+#include "rawlog_io/interleaved_writing.h"
 #include "rawlog_io/rawlog_writer.h"
 #include "rawlog_io/trajectory_io.h"
 #include "rosbag_io/ros_image.h"
@@ -81,57 +83,6 @@ std::vector<ImuSample> readImuTopic(const rosbag::Bag& bag, const std::string& p
   return samples;
 }
 
-/// One stream from a gyroscope's and an accelerometer's separate samples: at every sample of
-/// either sensor (within the time both cover) the other sensor's value interpolated linearly.
-std::vector<ImuSample> mergeSplitImu(const std::vector<ImuSample>& gyro,
-                                     const std::vector<ImuSample>& accel) {
-  std::vector<ImuSample> merged;
-  if (gyro.empty() || accel.empty()) return merged;
-  const double begin = std::max(gyro.front().t, accel.front().t),
-               end = std::min(gyro.back().t, accel.back().t);
-  size_t g = 0, a = 0;  // the next sample of each
-  auto interpolate = [](const std::vector<ImuSample>& v, size_t next, double t,
-                        Eigen::Vector3d ImuSample::*value) -> Eigen::Vector3d {
-    if (next == 0) return v[0].*value;
-    if (next == v.size()) return v.back().*value;
-    const double w = (t - v[next - 1].t) / (v[next].t - v[next - 1].t);
-    return (1 - w) * (v[next - 1].*value) + w * (v[next].*value);
-  };
-  while (g < gyro.size() || a < accel.size()) {
-    const double t =
-        std::min(g < gyro.size() ? gyro[g].t : INFINITY, a < accel.size() ? accel[a].t : INFINITY);
-    const bool gyro_here = g < gyro.size() && gyro[g].t == t,
-               accel_here = a < accel.size() && accel[a].t == t;
-    if (t >= begin && t <= end) {
-      ImuSample s;
-      s.t = t;
-      s.gyro = gyro_here ? gyro[g].gyro : interpolate(gyro, g, t, &ImuSample::gyro);
-      s.accel = accel_here ? accel[a].accel : interpolate(accel, a, t, &ImuSample::accel);
-      merged.push_back(s);
-    }
-    g += gyro_here;
-    a += accel_here;
-  }
-  return merged;
-}
-
-/// The samples decimated to `rate_hz` by timestamp: the first sample at or after each point of
-/// the grid t0 + k / rate is kept (a thousandth of a period early counts as on it: stamp
-/// rounding). rate_hz <= 0: all.
-std::vector<ImuSample> decimate(const std::vector<ImuSample>& samples, double rate_hz) {
-  if (rate_hz <= 0 || samples.empty()) return samples;
-  std::vector<ImuSample> kept;
-  long long last_slot = -1;
-  for (const ImuSample& s : samples) {
-    const auto slot =
-        static_cast<long long>(std::floor((s.t - samples.front().t) * rate_hz + 1e-3));
-    if (slot <= last_slot) continue;
-    last_slot = slot;
-    kept.push_back(s);
-  }
-  return kept;
-}
-
 /// Ground-truth body poses from a nav_msgs/Odometry or geometry_msgs/PoseStamped topic.
 Trajectory readGroundTruthTopic(const rosbag::Bag& bag, const std::string& path,
                                 const std::string& topic) {
@@ -166,7 +117,7 @@ Trajectory readGroundTruthTopic(const rosbag::Bag& bag, const std::string& path,
 }
 
 /// A distortion-free camera looking along body x (camera z = body x, x = body y, y = body z), as
-/// the RP-VIO authors' configs mount it.
+/// the RP-VIO authors' configs mount it in their simulated datasets.
 Calibration presetCalibration(int width, int height, double f, double cx, double cy) {
   Calibration c;
   c.camera.width = width;
@@ -177,7 +128,28 @@ Calibration presetCalibration(int width, int height, double f, double cx, double
   c.T_BC.linear() << 0, 0, 1,  //
       1, 0, 0,                 //
       0, 1, 0;
-  return c;  // IMU noise: ImuNoise's defaults (sensor_types.h)
+  return c;
+}
+
+/// OpenLORIS-Scene's D435i colour camera and IMU (the market scenes), as the RP-VIO authors'
+/// ol_market1_config.yaml gives the dataset's calibration.
+Calibration openlorisCalibration() {
+  Calibration c;
+  c.camera.width = 848;
+  c.camera.height = 480;
+  c.camera.fx = 616.802734375;
+  c.camera.fy = 616.7510375976562;
+  c.camera.cx = 435.0341796875;
+  c.camera.cy = 242.90113830566406;
+  Eigen::Matrix3d R;  // imu^R_cam, printed to 9 digits: made orthonormal
+  R << 9.99946615e-01, 5.27582295e-03, 8.88440156e-03,  //
+      -5.28478975e-03, 9.99985549e-01, 9.86100143e-04,  //
+      -8.87907068e-03, -1.03299969e-03, 9.99960047e-01;
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  c.T_BC.linear() = svd.matrixU() * svd.matrixV().transpose();
+  c.T_BC.translation() = Eigen::Vector3d(0.020096886903, -0.00507855368778, -0.0115051260218);
+  c.imu = imuNoiseFromDiscrete(0.0163, 0.0032, 0.0049, 0.0004, 200, 9.81007);
+  return c;
 }
 
 }  // namespace
@@ -188,12 +160,15 @@ BagPreset bagPreset(const std::string& name) {
   if (name == "viode") {
     preset.topics = {"/cam0/image_raw", "/imu0", "/cam0/segmentation", "/odometry", ""};
     preset.calibration = presetCalibration(752, 480, 376, 376, 240);
+    // The authors' viode_config.yaml figures (discrete-time, VIODE's 200 Hz IMU).
+    preset.calibration->imu = imuNoiseFromDiscrete(0.2, 0.05, 0.02, 4.0e-5, 200, 9.81007);
     preset.mask_colours = {{{179, 217, 227}, 1}, {{167, 128, 147}, 2}, {{235, 152, 233}, 3}};
     return preset;  // ground, wall, road
   }
   if (name == "openloris") {  // masks: --mask-topic (the RP-VIO authors': /planes/segments_crf)
     preset.topics = {"/d400/color/image_raw", "/d400/gyro/sample", "", "/gt", "/d400/accel/sample"};
     preset.imu_rate_hz = 200;
+    preset.calibration = openlorisCalibration();
     return preset;
   }
   if (name != "rpvio-sim")
@@ -203,6 +178,8 @@ BagPreset bagPreset(const std::string& name) {
   Calibration c = presetCalibration(640, 480, 320, 320, 240);
   c.T_BC.translation() = Eigen::Vector3d(0.5, 0, 0);
   c.time_offset = -0.0308;  // s, t_imu = t_cam + offset
+  // The authors' rpvio_sim_config.yaml figures (discrete-time, at the 200 Hz kept here).
+  c.imu = imuNoiseFromDiscrete(0.074427240, 0.002759607, 3.9471004e-7, 3.1538983e-8, 200, 9.80665);
   preset.calibration = c;
   preset.imu_rate_hz = 200;
   preset.groundtruth_beside_bag = "groundtruth.txt";
@@ -227,7 +204,7 @@ BagImportCounts importBag(const BagImportOptions& opt,
       requireTopic(bag, path, opt.topics.groundtruth, "nav_msgs/Odometry",
                    "geometry_msgs/PoseStamped");
     if (!opt.topics.accel.empty()) requireTopic(bag, path, opt.topics.accel, "sensor_msgs/Imu");
-    const std::vector<ImuSample> imu = decimate(
+    const std::vector<ImuSample> imu = decimateImu(
         opt.topics.accel.empty() ? readImuTopic(bag, path, opt.topics.imu)
                                  : mergeSplitImu(readImuTopic(bag, path, opt.topics.imu),
                                                  readImuTopic(bag, path, opt.topics.accel)),
@@ -238,22 +215,7 @@ BagImportCounts importBag(const BagImportOptions& opt,
                               : Trajectory{};
 
     RawlogWriter writer(opt.output_rawlog, opt.calibration);
-    size_t next_imu = 0, next_gt = 0;
-    // IMU and ground truth up to t (at equal stamps IMU first, then ground truth, then images).
-    auto writeSensorsUntil = [&](double t) {
-      for (;;) {
-        const double t_imu = next_imu < imu.size() ? imu[next_imu].t : INFINITY;
-        const double t_gt = next_gt < gt.size() ? gt[next_gt].t : INFINITY;
-        if ((next_imu == imu.size() && next_gt == gt.size()) || std::min(t_imu, t_gt) > t) return;
-        if (t_imu <= t_gt) {
-          writer.addImu(imu[next_imu++]);
-          ++counts.imu;
-        } else {
-          writer.addGroundTruth(gt[next_gt++]);
-          ++counts.groundtruth;
-        }
-      }
-    };
+    InterleavedSensorWriter sensors(writer, imu, gt);
     double last_image_t = -INFINITY;
     auto writeImage = [&](const ros::Time& stamp, const cv::Mat& image, const cv::Mat* mask) {
       const double t = rawlogSeconds(stamp);
@@ -261,7 +223,7 @@ BagImportCounts importBag(const BagImportOptions& opt,
         throw InputError(path, opt.topics.image + " at " + timeText(stamp),
                          "image stamps go backwards or repeat (the previous one is not earlier)");
       last_image_t = t;
-      writeSensorsUntil(t);
+      sensors.writeUntil(t);
       writer.addImage(t, image);
       ++counts.images;
       if (!mask) return;
@@ -324,7 +286,9 @@ BagImportCounts importBag(const BagImportOptions& opt,
     }
     writeImagesBefore(ros::TIME_MAX);
     counts.unpaired_masks += waiting_masks.size();
-    writeSensorsUntil(INFINITY);
+    sensors.writeUntil(INFINITY);
+    counts.imu = sensors.imuWritten();
+    counts.groundtruth = sensors.groundTruthWritten();
     saveCalibration((out_dir / "calib.ini").string(), opt.calibration);
     writer.close();
   } catch (const rosbag::BagException& e) {

@@ -35,8 +35,8 @@ struct BagPreset {
 
 /// "rpvio-sim" (the RP-VIO authors' simulated warehouse bags), "viode" (VIODE's simulated drone
 /// bags, segmentation colours as planes), "openloris" (the official OpenLORIS-Scene bags' D435i:
-/// separate accelerometer and gyroscope; calibration from the dataset's files: --calib) or
-/// "generic" (nothing preset).
+/// separate accelerometer and gyroscope; the market scenes' calibration) or
+/// "generic" (nothing preset). IMU noise: the RP-VIO authors' figures (imuNoiseFromDiscrete).
 /// Throws std::invalid_argument on another name.
 BagPreset bagPreset(const std::string& name);
 

@@ -330,5 +330,28 @@ TEST(BagImport, BadInputIsOneErrorAndNoOutput) {
   EXPECT_NE(cut.find(truncated.file("in.bag")), std::string::npos) << cut;
 }
 
+TEST(BagImport, PresetsCarryAUsableCalibration) {
+  for (const std::string name : {"rpvio-sim", "viode", "openloris"}) {
+    const BagPreset preset = bagPreset(name);
+    ASSERT_TRUE(preset.calibration) << name;
+    const Calibration& c = *preset.calibration;
+    const Eigen::Matrix3d R = c.T_BC.linear();
+    EXPECT_LT((R.transpose() * R - Eigen::Matrix3d::Identity()).norm(), 1e-12) << name;
+    EXPECT_NEAR(R.determinant(), 1, 1e-12) << name;
+    for (double density : {c.imu.accel_noise_density, c.imu.gyro_noise_density,
+                           c.imu.accel_random_walk, c.imu.gyro_random_walk})
+      EXPECT_TRUE(density > 0 && std::isfinite(density)) << name;
+    EXPECT_GT(c.imu.gravity, 9.7) << name;
+    // The principal point inside the image.
+    EXPECT_TRUE(c.camera.cx > 0 && c.camera.cx < c.camera.width) << name;
+    EXPECT_TRUE(c.camera.cy > 0 && c.camera.cy < c.camera.height) << name;
+  }
+  // OpenLORIS' D435i: the colour camera 2 cm from the IMU, axes nearly aligned.
+  const Calibration openloris = *bagPreset("openloris").calibration;
+  EXPECT_EQ(openloris.camera.width, 848);
+  EXPECT_NEAR(openloris.T_BC.translation().norm(), 0.0237, 1e-3);
+  EXPECT_GT(openloris.T_BC.linear().trace(), 2.99);
+}
+
 }  // namespace
 }  // namespace rpvio
