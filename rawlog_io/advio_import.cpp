@@ -28,19 +28,47 @@ constexpr double kStandardGravity = 9.80665;  // m/s^2, CoreMotion's "g"
 struct AdvioBatch {
   int first_sequence, last_sequence;
   double fx, fy, cx, cy;
-  std::array<double, 4> radtan;  // k1 k2 p1 p2
+  std::array<double, 4> radtan;           // k1 k2 p1 p2
   Eigen::Vector3d accel_bias, gyro_bias;  // approximate, additive, in the files' units
 };
 
 const AdvioBatch kBatches[] = {
-    {1, 12, 1077.2, 1079.3, 362.145, 636.3873, {0.0478, 0.0339, -0.00033, -0.00091},
-     {0.0407, -0.0623, 0.1017}, {-0.0067, 0.0070, -0.0065}},
-    {13, 17, 1082.4, 1084.4, 364.6778, 643.3080, {0.0366, 0.0803, 0.000783, -0.000215},
-     {0.0415, -0.0617, 0.1008}, {-0.0065, 0.0055, -0.0064}},
-    {18, 19, 1076.9, 1078.5, 360.96, 639.31, {0.0510, -0.0354, -0.0054, 0.0473},
-     {0.0393, -0.0635, 0.1024}, {-0.0069, 0.0062, -0.0067}},
-    {20, 23, 1081.1, 1082.1, 359.59, 640.79, {0.0556, -0.0454, 0.0009, -0.0018},
-     {0.0405, -0.0620, 0.1012}, {-0.0066, 0.0065, -0.0063}},
+    {1,
+     12,
+     1077.2,
+     1079.3,
+     362.145,
+     636.3873,
+     {0.0478, 0.0339, -0.00033, -0.00091},
+     {0.0407, -0.0623, 0.1017},
+     {-0.0067, 0.0070, -0.0065}},
+    {13,
+     17,
+     1082.4,
+     1084.4,
+     364.6778,
+     643.3080,
+     {0.0366, 0.0803, 0.000783, -0.000215},
+     {0.0415, -0.0617, 0.1008},
+     {-0.0065, 0.0055, -0.0064}},
+    {18,
+     19,
+     1076.9,
+     1078.5,
+     360.96,
+     639.31,
+     {0.0510, -0.0354, -0.0054, 0.0473},
+     {0.0393, -0.0635, 0.1024},
+     {-0.0069, 0.0062, -0.0067}},
+    {20,
+     23,
+     1081.1,
+     1082.1,
+     359.59,
+     640.79,
+     {0.0556, -0.0454, 0.0009, -0.0018},
+     {0.0405, -0.0620, 0.1012},
+     {-0.0066, 0.0065, -0.0063}},
 };
 
 const AdvioBatch& batchOf(int sequence) {
@@ -125,8 +153,8 @@ Calibration advioCalibration(int sequence) {
       -0.00554870467502187, -0.0023008567036498766, -0.9999819588046867;
   const Eigen::JacobiSVD<Eigen::Matrix3d> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
   c.T_BC.linear() = svd.matrixU() * svd.matrixV().transpose();  // printed to 16 digits
-  c.T_BC.translation() = Eigen::Vector3d(-0.008977668364731128, 0.07557012320238939,
-                                         -0.005545773942541918);
+  c.T_BC.translation() =
+      Eigen::Vector3d(-0.008977668364731128, 0.07557012320238939, -0.005545773942541918);
   // The same configuration's discrete-time figures at the IMU's 100 Hz.
   c.imu = imuNoiseFromDiscrete(0.1517, 0.0758, 6.6407e-6, 1.6127e-6, 100, 9.8067);
   return c;
@@ -135,14 +163,9 @@ Calibration advioCalibration(int sequence) {
 double detectAccelScale(const std::vector<Eigen::Vector3d>& accel, const Eigen::Matrix3d& R_BC,
                         const std::string& path, std::string& reason) {
   if (accel.empty()) throw InputError(path, "", "no accelerometer sample");
-  std::vector<double> norms;
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  for (const Eigen::Vector3d& a : accel) {
-    norms.push_back(a.norm());
-    sum += a;
-  }
-  std::nth_element(norms.begin(), norms.begin() + norms.size() / 2, norms.end());
-  const double median = norms[norms.size() / 2];
+  for (const Eigen::Vector3d& a : accel) sum += a;
+  const double median = medianNorm(accel);
   char text[160];
   double unit;
   if (std::abs(median - 1) < 0.3) {
@@ -166,8 +189,8 @@ double detectAccelScale(const std::vector<Eigen::Vector3d>& accel, const Eigen::
     throw InputError(path, "", text);
   }
   const double scale = image_down < 0 ? unit : -unit;
-  std::snprintf(text, sizeof text, "median |a| = %.3f, mean reading towards the image's %s",
-                median, image_down < 0 ? "top" : "bottom (CoreMotion's sign)");
+  std::snprintf(text, sizeof text, "median |a| = %.3f, mean reading towards the image's %s", median,
+                image_down < 0 ? "top" : "bottom (CoreMotion's sign)");
   reason = text;
   return scale;
 }
@@ -245,8 +268,7 @@ AdvioImportCounts importAdvio(const AdvioImportOptions& opt,
   const std::string video = (iphone / "frames.mov").string();
   if (!fs::is_regular_file(video)) throw InputError(video, "", "file not found");
   cv::VideoCapture capture(video, cv::CAP_FFMPEG);
-  if (!capture.isOpened())
-    throw InputError(video, "", "OpenCV (FFmpeg) cannot open the video");
+  if (!capture.isOpened()) throw InputError(video, "", "OpenCV (FFmpeg) cannot open the video");
   capture.set(cv::CAP_PROP_ORIENTATION_AUTO, 0);  // turned by --rotate only
 
   RawlogWriter writer(opt.output_rawlog, calib);

@@ -22,9 +22,9 @@ enum class FrameRotation { None, Clockwise, CounterClockwise, HalfTurn };
 FrameRotation frameRotationFromName(const std::string& name);
 
 struct AdvioImportOptions {
-  std::string sequence_dir;   // advio-NN, holding iphone/ and ground-truth/
-  std::string output_rawlog;  // calib.ini is written beside it
-  int every = 1;              // keep every N-th video frame (60 Hz / N)
+  std::string sequence_dir;                           // advio-NN, holding iphone/ and ground-truth/
+  std::string output_rawlog;                          // calib.ini is written beside it
+  int every = 1;                                      // keep every N-th video frame (60 Hz / N)
   FrameRotation rotation = FrameRotation::Clockwise;  // ADVIO's iPhone video is stored sideways
   // Default: the published calibration of the sequence's batch, chosen by the NN of the folder
   // name (advio-01 .. advio-23).

@@ -51,4 +51,13 @@ std::vector<ImuSample> decimateImu(const std::vector<ImuSample>& samples, double
   return kept;
 }
 
+double medianNorm(const std::vector<Eigen::Vector3d>& vectors) {
+  if (vectors.empty()) return 0;
+  std::vector<double> norms;
+  norms.reserve(vectors.size());
+  for (const Eigen::Vector3d& v : vectors) norms.push_back(v.norm());
+  std::nth_element(norms.begin(), norms.begin() + norms.size() / 2, norms.end());
+  return norms[norms.size() / 2];
+}
+
 }  // namespace rpvio

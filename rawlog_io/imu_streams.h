@@ -18,4 +18,8 @@ std::vector<ImuSample> mergeSplitImu(const std::vector<ImuSample>& gyro,
 /// rounding). rate_hz <= 0: all.
 std::vector<ImuSample> decimateImu(const std::vector<ImuSample>& samples, double rate_hz);
 
+/// The median of the vectors' norms (0 for none): an accelerometer's is about gravity in m/s^2
+/// whatever the motion, which tells the units of a stream.
+double medianNorm(const std::vector<Eigen::Vector3d>& vectors);
+
 }  // namespace rpvio

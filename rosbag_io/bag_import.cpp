@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "common/input_error.h"
+#include "rawlog_io/advio_import.h"
 #include "rawlog_io/calibration.h"
 #include "rawlog_io/imu_streams.h"
 #include "rawlog_io/interleaved_writing.h"
@@ -81,6 +82,25 @@ std::vector<ImuSample> readImuTopic(const rosbag::Bag& bag, const std::string& p
     samples.push_back(s);
   }
   return samples;
+}
+
+/// InputError unless the accelerations' median magnitude is about gravity: sensor_msgs/Imu is in
+/// m/s^2, and a recorder that wrote g (or nothing) would otherwise give a run that cannot start.
+void requireAccelerationInMetresPerSecondSquared(const std::vector<ImuSample>& imu, double gravity,
+                                                 const std::string& path,
+                                                 const std::string& topic) {
+  std::vector<Eigen::Vector3d> accel;
+  accel.reserve(imu.size());
+  for (const ImuSample& s : imu) accel.push_back(s.accel);
+  const double median = medianNorm(accel);
+  if (std::abs(median / gravity - 1) > 0.3) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "median |linear_acceleration| is %.3f, not about gravity (%.2f m/s^2): "
+                  "sensor_msgs/Imu is in m/s^2",
+                  median, gravity);
+    throw InputError(path, topic, text);
+  }
 }
 
 /// Ground-truth body poses from a nav_msgs/Odometry or geometry_msgs/PoseStamped topic.
@@ -171,9 +191,14 @@ BagPreset bagPreset(const std::string& name) {
     preset.calibration = openlorisCalibration();
     return preset;
   }
+  if (name == "advio") {  // the RP-VIO authors' ADVIO bags (masks added), sequences 1-12
+    preset.topics = {"/cam0/image_raw", "/imu0", "/cam0/mask", "", ""};
+    preset.calibration = advioCalibration(12);
+    return preset;
+  }
   if (name != "rpvio-sim")
     throw std::invalid_argument("unknown preset '" + name +
-                                "' (rpvio-sim, viode, openloris or generic)");
+                                "' (rpvio-sim, viode, openloris, advio or generic)");
   preset.topics = {"/image", "/imu", "/mask", "", ""};
   Calibration c = presetCalibration(640, 480, 320, 320, 240);
   c.T_BC.translation() = Eigen::Vector3d(0.5, 0, 0);
@@ -209,6 +234,9 @@ BagImportCounts importBag(const BagImportOptions& opt,
                                  : mergeSplitImu(readImuTopic(bag, path, opt.topics.imu),
                                                  readImuTopic(bag, path, opt.topics.accel)),
         opt.imu_rate_hz);
+    requireAccelerationInMetresPerSecondSquared(
+        imu, opt.calibration.imu.gravity, path,
+        opt.topics.accel.empty() ? opt.topics.imu : opt.topics.accel);
     const Trajectory gt = !opt.groundtruth_file.empty() ? readTum(opt.groundtruth_file)
                           : !opt.topics.groundtruth.empty()
                               ? readGroundTruthTopic(bag, path, opt.topics.groundtruth)

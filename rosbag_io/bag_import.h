@@ -35,7 +35,8 @@ struct BagPreset {
 
 /// "rpvio-sim" (the RP-VIO authors' simulated warehouse bags), "viode" (VIODE's simulated drone
 /// bags, segmentation colours as planes), "openloris" (the official OpenLORIS-Scene bags' D435i:
-/// separate accelerometer and gyroscope; the market scenes' calibration) or
+/// separate accelerometer and gyroscope; the market scenes' calibration), "advio" (the RP-VIO
+/// authors' ADVIO bags with masks; the iPhone calibration of sequences 1-12) or
 /// "generic" (nothing preset). IMU noise: the RP-VIO authors' figures (imuNoiseFromDiscrete).
 /// Throws std::invalid_argument on another name.
 BagPreset bagPreset(const std::string& name);
@@ -55,8 +56,9 @@ struct BagImportCounts {
 };
 
 /// Throws InputError (bag + message position) on bad input: a missing topic (the message lists
-/// the bag's topics), an unsupported encoding, a mask of another size than its image, stamps
-/// going backwards. Nothing appears under the output names unless the import completes.
+/// the bag's topics), accelerations not in m/s^2 (median magnitude off gravity by 30 %), an
+/// unsupported encoding, a mask of another size than its image, stamps going backwards. Nothing
+/// appears under the output names unless the import completes.
 BagImportCounts importBag(const BagImportOptions& options,
                           const std::function<void(size_t)>& progress = {});
 

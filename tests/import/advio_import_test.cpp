@@ -196,10 +196,10 @@ TEST(AdvioImportBadInput, OneLineErrorAndNothingWritten) {
     if (c.spoil) c.spoil(advio);
     test::TempDir out;
     std::string output;
-    const int rc = test::runCommand(std::string(RPVIO_BIN_DIR) + "/rpvio-import advio --seq " +
-                                        advio.dir.string() + " " + c.args + " --out " +
-                                        out.file("seq.rawlog"),
-                                    output);
+    const int rc =
+        test::runCommand(std::string(RPVIO_BIN_DIR) + "/rpvio-import advio --seq " +
+                             advio.dir.string() + " " + c.args + " --out " + out.file("seq.rawlog"),
+                         output);
     EXPECT_EQ(rc, 2) << c.what << ": " << output;
     EXPECT_NE(output.find(c.expected), std::string::npos) << c.what << ": " << output;
     EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << c.what << ": " << output;

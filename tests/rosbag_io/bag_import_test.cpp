@@ -323,6 +323,24 @@ TEST(BagImport, BadInputIsOneErrorAndNoOutput) {
   opt.topics.mask.clear();
   EXPECT_NE(importError(opt).find("image stamps go backwards or repeat"), std::string::npos);
 
+  test::TempDir in_g;  // accelerations written in g
+  {
+    rosbag::Bag bag(in_g.file("in.bag"), rosbag::bagmode::Write);
+    for (int k = 0; k < 3; ++k) {
+      const ros::Time stamp(kStart + 0.005 * k);
+      sensor_msgs::Imu imu = imuMessage(stamp, 0);
+      imu.linear_acceleration.z = 1.0;
+      bag.write("/imu0", stamp, imu);
+    }
+    bag.write("/cam0/image_raw", ros::Time(kStart), colourImage("mono8", ros::Time(kStart), {}));
+  }
+  opt = options(in_g);
+  opt.topics.mask.clear();
+  const std::string units = importError(opt);
+  EXPECT_NE(units.find(":/imu0: median |linear_acceleration| is 1.000, not about gravity"),
+            std::string::npos)
+      << units;
+
   test::TempDir truncated;
   writeBag(truncated.file("in.bag"), "mono8", rosbag::compression::Uncompressed);
   fs::resize_file(truncated.file("in.bag"), fs::file_size(truncated.file("in.bag")) / 2);
@@ -331,7 +349,7 @@ TEST(BagImport, BadInputIsOneErrorAndNoOutput) {
 }
 
 TEST(BagImport, PresetsCarryAUsableCalibration) {
-  for (const std::string name : {"rpvio-sim", "viode", "openloris"}) {
+  for (const std::string name : {"rpvio-sim", "viode", "openloris", "advio"}) {
     const BagPreset preset = bagPreset(name);
     ASSERT_TRUE(preset.calibration) << name;
     const Calibration& c = *preset.calibration;
