@@ -11,6 +11,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "common/input_error.h"
+#include "rawlog_io/calibration.h"
 #include "rawlog_io/rawlog_reader.h"
 #include "rawlog_io/rawlog_summary.h"
 #include "rosbag_io/bag_import.h"
@@ -249,6 +250,35 @@ TEST(BagImport, OpenLorisPresetMergesTheSplitAccelerometerAndGyroscope) {
     ++imu;
   }
   EXPECT_EQ(imu, counts.imu);
+}
+
+TEST(BagImport, AdvioPresetReadsTheAuthorsPortraitBagsWithMasks) {
+  const BagPreset advio = bagPreset("advio");
+  test::TempDir dir;
+  {
+    rosbag::Bag bag(dir.file("in.bag"), rosbag::bagmode::Write);
+    for (int k = 0; k <= 30; ++k) {  // the iPhone's 100 Hz
+      const ros::Time stamp(kStart + k * 0.01);
+      bag.write(advio.topics.imu, stamp, imuMessage(stamp, 0.1));
+    }
+    for (int k = 0; k < 3; ++k) {
+      const ros::Time stamp(kStart + 0.05 + k * 0.1);
+      bag.write(advio.topics.image, stamp, colourImage("mono8", stamp, cv::Scalar(70), 720, 1280));
+      bag.write(advio.topics.mask, stamp, colourImage("mono8", stamp, cv::Scalar(2), 720, 1280));
+    }
+  }
+  BagImportOptions opt = options(dir);
+  opt.topics = advio.topics;
+  opt.calibration = *advio.calibration;
+  opt.imu_rate_hz = advio.imu_rate_hz;
+  const BagImportCounts counts = importBag(opt);
+  EXPECT_EQ(counts.images, 3u);
+  EXPECT_EQ(counts.masks, 3u);
+  EXPECT_EQ(counts.imu, 31u);  // every sample kept
+  const Calibration calib = loadCalibration(dir.file("calib.ini"));
+  EXPECT_EQ(calib.camera.width, 720);
+  EXPECT_EQ(calib.camera.height, 1280);
+  EXPECT_EQ(calib.camera.model, DistortionModel::RadTan);
 }
 
 /// importBag's InputError text, and that nothing was written.
