@@ -58,10 +58,7 @@ rpvio::AdvioImportOptions advioOptions(const rpvio::apps::CommandLine& cli) {
   AdvioImportOptions opt;
   opt.sequence_dir = cli.value("seq");
   opt.output_rawlog = cli.value("out");
-  const double every = cli.number("every", 1);
-  if (!(every >= 1) || every != std::floor(every))
-    throw apps::UsageError("--every: a whole number of frames, 1 or more");
-  opt.every = static_cast<int>(every);
+  opt.every = cli.count("every", 1);
   try {
     opt.rotation = frameRotationFromName(cli.valueOr("rotate", "cw"));
   } catch (const std::invalid_argument& e) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
@@ -155,8 +156,8 @@ Calibration advioCalibration(int sequence) {
   c.T_BC.linear() = svd.matrixU() * svd.matrixV().transpose();  // printed to 16 digits
   c.T_BC.translation() =
       Eigen::Vector3d(-0.008977668364731128, 0.07557012320238939, -0.005545773942541918);
-  // The same configuration's discrete-time figures at the IMU's 100 Hz.
-  c.imu = imuNoiseFromDiscrete(0.1517, 0.0758, 6.6407e-6, 1.6127e-6, 100, 9.8067);
+  // The same configuration's figures, for the IMU's 100 Hz.
+  c.imu = imuNoiseFromVinsMono(0.1517, 0.0758, 6.6407e-6, 1.6127e-6, 100, 9.8067);
   return c;
 }
 
@@ -184,7 +185,7 @@ double detectAccelScale(const std::vector<Eigen::Vector3d>& accel, const Eigen::
   if (std::abs(image_down) < 0.5) {
     std::snprintf(text, sizeof text,
                   "cannot tell the sign: the mean reading is %.0f deg from the image's vertical "
-                  "(images not upright? see --rotate); give --accel-scale",
+                  "(the camera's y axis in the calibration); give --accel-scale",
                   std::acos(std::abs(image_down)) * 180 / M_PI);
     throw InputError(path, "", text);
   }
@@ -200,7 +201,8 @@ AdvioImportCounts importAdvio(const AdvioImportOptions& opt,
   const fs::path dir(opt.sequence_dir);
   if (!fs::is_directory(dir / "iphone"))
     throw InputError(opt.sequence_dir, "", "not an ADVIO sequence folder (no iphone/ in it)");
-  if (opt.every < 1) throw std::invalid_argument("--every must be 1 or more");
+  if (opt.every < 1)
+    throw InputError(opt.sequence_dir, "", "keeping every N-th frame needs N >= 1");
   const fs::path out(opt.output_rawlog);
   const fs::path out_dir = out.has_parent_path() ? out.parent_path() : fs::path(".");
   if (!fs::is_directory(out_dir))
@@ -209,7 +211,8 @@ AdvioImportCounts importAdvio(const AdvioImportOptions& opt,
   AdvioImportCounts counts;
   Calibration calib;
   const AdvioBatch* batch = nullptr;
-  if (const int sequence = sequenceNumber(dir); sequence >= 1 && sequence <= 23) {
+  if (const int sequence = sequenceNumber(dir);
+      !opt.calibration && sequence >= 1 && sequence <= 23) {
     batch = &batchOf(sequence);
     counts.batch = static_cast<int>(batch - kBatches) + 1;
   }
@@ -227,11 +230,12 @@ AdvioImportCounts importAdvio(const AdvioImportOptions& opt,
   const std::string frames_csv = (iphone / "frames.csv").string();
   const std::string accel_csv = existingFile(iphone, {"accelerometer.csv"});
   const std::vector<TimedRow> frames = readTimedCsv(frames_csv, 1);
+  // Row k stamps video frame k, as the dataset's own tools read it (the second column is not used).
   const std::vector<TimedRow> accel_rows = readTimedCsv(accel_csv, 3);
   const std::vector<TimedRow> gyro_rows =
       readTimedCsv(existingFile(iphone, {"gyro.csv", "gyroscope.csv"}), 3);
 
-  const bool unbias = batch && opt.subtract_batch_bias;
+  const bool unbias = batch && !opt.calibration && opt.subtract_batch_bias;
   std::vector<Eigen::Vector3d> accel_readings;
   for (const TimedRow& r : accel_rows)
     accel_readings.push_back(vec3(r) - (unbias ? batch->accel_bias : Eigen::Vector3d::Zero()));
@@ -267,6 +271,7 @@ AdvioImportCounts importAdvio(const AdvioImportOptions& opt,
 
   const std::string video = (iphone / "frames.mov").string();
   if (!fs::is_regular_file(video)) throw InputError(video, "", "file not found");
+  setenv("OPENCV_FFMPEG_LOGLEVEL", "-8", 0);  // FFmpeg quiet: errors are ours, on one line
   cv::VideoCapture capture(video, cv::CAP_FFMPEG);
   if (!capture.isOpened()) throw InputError(video, "", "OpenCV (FFmpeg) cannot open the video");
   capture.set(cv::CAP_PROP_ORIENTATION_AUTO, 0);  // turned by --rotate only
@@ -296,13 +301,18 @@ AdvioImportCounts importAdvio(const AdvioImportOptions& opt,
     ++counts.images;
     if (progress && counts.images % 100 == 0) progress(frame + 1);
   }
+  const double frames_in_file = capture.get(cv::CAP_PROP_FRAME_COUNT);
+  if (frame < frames.size() && frames_in_file > static_cast<double>(frame))
+    throw InputError(video, "frame " + std::to_string(frame + 1),
+                     "cannot be decoded (the file says it has " +
+                         std::to_string(static_cast<long long>(frames_in_file)) + " frames)");
   if (counts.images == 0) throw InputError(video, "", "no frame could be decoded");
   counts.stamps_without_frame = frames.size() - std::min(frame, frames.size());
   sensors.writeUntil(INFINITY);
   counts.imu = sensors.imuWritten();
   counts.groundtruth = sensors.groundTruthWritten();
+  writer.close();  // then calib.ini: nothing is left behind if the rawlog fails
   saveCalibration((out_dir / "calib.ini").string(), calib);
-  writer.close();
   return counts;
 }
 

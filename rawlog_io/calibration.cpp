@@ -104,14 +104,14 @@ void saveCalibration(const std::string& path, const Calibration& c) {
   });
 }
 
-ImuNoise imuNoiseFromDiscrete(double acc_n, double gyr_n, double acc_w, double gyr_w,
+ImuNoise imuNoiseFromVinsMono(double acc_n, double gyr_n, double acc_w, double gyr_w,
                               double rate_hz, double gravity) {
-  const double sqrt_dt = std::sqrt(1.0 / rate_hz);
+  const double dt = 1.0 / rate_hz;
   ImuNoise n;
-  n.accel_noise_density = acc_n * sqrt_dt;
-  n.gyro_noise_density = gyr_n * sqrt_dt;
-  n.accel_random_walk = acc_w / sqrt_dt;
-  n.gyro_random_walk = gyr_w / sqrt_dt;
+  n.accel_noise_density = acc_n * std::sqrt(dt / 2);
+  n.gyro_noise_density = gyr_n * std::sqrt(dt / 2);
+  n.accel_random_walk = acc_w * std::sqrt(dt);
+  n.gyro_random_walk = gyr_w * std::sqrt(dt);
   n.rate_hz = rate_hz;
   n.gravity = gravity;
   return n;

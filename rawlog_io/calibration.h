@@ -23,11 +23,13 @@ Calibration loadCalibration(const std::string& path);
 /// Writes to a temporary name and renames it when complete.
 void saveCalibration(const std::string& path, const Calibration& calibration);
 
-/// IMU noise given as discrete-time standard deviations per sample at `rate_hz` (the acc_n,
-/// gyr_n, acc_w, gyr_w of VINS-Mono-style configurations) as the continuous-time densities of
-/// calib.ini, Δt = 1 / rate_hz: white noise σ_c = σ_d √Δt, bias random walk σ_rw = σ_w / √Δt
-/// (Kalibr's convention; docs/datasets.md).
-ImuNoise imuNoiseFromDiscrete(double acc_n, double gyr_n, double acc_w, double gyr_w,
+/// IMU noise in the figures of VINS-Mono-style configurations (acc_n, gyr_n, acc_w, gyr_w, which
+/// they call discrete-time standard deviations, for samples at `rate_hz`) as the densities of
+/// calib.ini that give this program's preintegration the covariance VINS-Mono's midpoint
+/// propagation gets from them. Per step of Δt = 1 / rate_hz VINS-Mono adds (Δt/2)² acc_n² for each
+/// of the step's two samples to the velocity and Δt² acc_w² to the bias; here σ_c² Δt and σ_rw² Δt
+/// (imu_preintegration.cpp). Hence σ_c = acc_n √(Δt/2) and σ_rw = acc_w √Δt (docs/datasets.md).
+ImuNoise imuNoiseFromVinsMono(double acc_n, double gyr_n, double acc_w, double gyr_w,
                               double rate_hz, double gravity);
 
 }  // namespace rpvio

@@ -213,8 +213,8 @@ EurocImportCounts importEuroc(const EurocImportOptions& opt,
     const size_t done = i_img + i_imu + i_gt;
     if (progress && (done % 2000 == 0 || done == total)) progress(done, total);
   }
+  writer.close();  // then calib.ini: nothing is left behind if the rawlog fails
   saveCalibration(calib_path, calib);
-  writer.close();
   return counts;
 }
 

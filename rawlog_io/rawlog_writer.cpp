@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "common/atomic_file.h"
+#include "common/input_error.h"
 #include "rawlog_io/mrpt_conversions.h"
 #include "rawlog_io/rawlog_labels.h"
 #include "rawlog_io/rawlog_reader.h"
@@ -69,15 +70,19 @@ RawlogWriter::RawlogWriter(const std::string& path, const Calibration& calib)
   impl_->path = path;
   const fs::path p(path);
   const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
-  if (!fs::is_directory(dir)) throw std::runtime_error(path + ": output folder does not exist");
+  if (!fs::is_directory(dir)) throw InputError(path, "", "output folder does not exist");
+  if (fs::is_directory(p)) throw InputError(path, "", "is a folder, not a rawlog file name");
   impl_->images_dir = (dir / (p.stem().string() + "_Images")).string();
   impl_->images_tmp_dir = impl_->images_dir + ".tmp";
   fs::remove_all(impl_->images_tmp_dir);
   fs::create_directories(impl_->images_tmp_dir);
   impl_->camera = toTCamera(calib.camera);
   impl_->camera_pose = toCPose3D(calib.T_BC);
-  if (!impl_->stream.open(temporaryPathFor(path)))
-    throw std::runtime_error(path + ": cannot open for writing");
+  if (!impl_->stream.open(temporaryPathFor(path))) {
+    std::error_code ec;
+    fs::remove_all(impl_->images_tmp_dir, ec);
+    throw InputError(path, "", "cannot open for writing");
+  }
 }
 
 RawlogWriter::~RawlogWriter() {

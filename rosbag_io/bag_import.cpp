@@ -89,6 +89,8 @@ std::vector<ImuSample> readImuTopic(const rosbag::Bag& bag, const std::string& p
 void requireAccelerationInMetresPerSecondSquared(const std::vector<ImuSample>& imu, double gravity,
                                                  const std::string& path,
                                                  const std::string& topic) {
+  if (imu.empty())
+    throw InputError(path, topic, "no IMU sample (the gyroscope and accelerometer do not overlap)");
   std::vector<Eigen::Vector3d> accel;
   accel.reserve(imu.size());
   for (const ImuSample& s : imu) accel.push_back(s.accel);
@@ -168,7 +170,7 @@ Calibration openlorisCalibration() {
   const Eigen::JacobiSVD<Eigen::Matrix3d> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
   c.T_BC.linear() = svd.matrixU() * svd.matrixV().transpose();
   c.T_BC.translation() = Eigen::Vector3d(0.020096886903, -0.00507855368778, -0.0115051260218);
-  c.imu = imuNoiseFromDiscrete(0.0163, 0.0032, 0.0049, 0.0004, 200, 9.81007);
+  c.imu = imuNoiseFromVinsMono(0.0163, 0.0032, 0.0049, 0.0004, 200, 9.81007);
   return c;
 }
 
@@ -180,8 +182,8 @@ BagPreset bagPreset(const std::string& name) {
   if (name == "viode") {
     preset.topics = {"/cam0/image_raw", "/imu0", "/cam0/segmentation", "/odometry", ""};
     preset.calibration = presetCalibration(752, 480, 376, 376, 240);
-    // The authors' viode_config.yaml figures (discrete-time, VIODE's 200 Hz IMU).
-    preset.calibration->imu = imuNoiseFromDiscrete(0.2, 0.05, 0.02, 4.0e-5, 200, 9.81007);
+    // The authors' viode_config.yaml figures (for VIODE's 200 Hz IMU).
+    preset.calibration->imu = imuNoiseFromVinsMono(0.2, 0.05, 0.02, 4.0e-5, 200, 9.81007);
     preset.mask_colours = {{{179, 217, 227}, 1}, {{167, 128, 147}, 2}, {{235, 152, 233}, 3}};
     return preset;  // ground, wall, road
   }
@@ -203,8 +205,8 @@ BagPreset bagPreset(const std::string& name) {
   Calibration c = presetCalibration(640, 480, 320, 320, 240);
   c.T_BC.translation() = Eigen::Vector3d(0.5, 0, 0);
   c.time_offset = -0.0308;  // s, t_imu = t_cam + offset
-  // The authors' rpvio_sim_config.yaml figures (discrete-time, at the 200 Hz kept here).
-  c.imu = imuNoiseFromDiscrete(0.074427240, 0.002759607, 3.9471004e-7, 3.1538983e-8, 200, 9.80665);
+  // The authors' rpvio_sim_config.yaml figures (for the 200 Hz kept here).
+  c.imu = imuNoiseFromVinsMono(0.074427240, 0.002759607, 3.9471004e-7, 3.1538983e-8, 200, 9.80665);
   preset.calibration = c;
   preset.imu_rate_hz = 200;
   preset.groundtruth_beside_bag = "groundtruth.txt";
@@ -317,8 +319,8 @@ BagImportCounts importBag(const BagImportOptions& opt,
     sensors.writeUntil(INFINITY);
     counts.imu = sensors.imuWritten();
     counts.groundtruth = sensors.groundTruthWritten();
+    writer.close();  // then calib.ini: nothing is left behind if the rawlog fails
     saveCalibration((out_dir / "calib.ini").string(), opt.calibration);
-    writer.close();
   } catch (const rosbag::BagException& e) {
     throw InputError(path, "", std::string("not a readable ROS1 bag: ") + e.what());
   } catch (const ros::Exception& e) {  // a message body shorter than its type (truncated)

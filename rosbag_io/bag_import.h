@@ -37,7 +37,7 @@ struct BagPreset {
 /// bags, segmentation colours as planes), "openloris" (the official OpenLORIS-Scene bags' D435i:
 /// separate accelerometer and gyroscope; the market scenes' calibration), "advio" (the RP-VIO
 /// authors' ADVIO bags with masks; the iPhone calibration of sequences 1-12) or
-/// "generic" (nothing preset). IMU noise: the RP-VIO authors' figures (imuNoiseFromDiscrete).
+/// "generic" (nothing preset). IMU noise: the RP-VIO authors' figures (imuNoiseFromVinsMono).
 /// Throws std::invalid_argument on another name.
 BagPreset bagPreset(const std::string& name);
 

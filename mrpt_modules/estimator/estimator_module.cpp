@@ -37,6 +37,7 @@ void SlidingWindowEstimatorModule::finish() {
   summary.resets = estimator_->resetLog();
   summary.status =
       estimator_->status() == "tracking" ? estimator_->status() : estimator_->statusDetail();
+  summary.rejected_planes = estimator_->planeRejections();
   bus_->publish(summary);
 }
 
@@ -70,7 +71,15 @@ void SlidingWindowEstimatorModule::processOldestPending() {
   for (const auto& s : imu_)
     if (s.t <= frame.t) samples.push_back(s);
   if (previous_frame_t_ < 0) samples.clear();
+  const size_t rejected_before = estimator_->planeRejections().size();
   const auto state = estimator_->addFrame(frame, samples);
+  for (size_t i = rejected_before; i < estimator_->planeRejections().size(); ++i) {
+    const PlaneRejection& r = estimator_->planeRejections()[i];
+    MRPT_LOG_WARN_FMT(
+        "t=%s: plane %d moves against the camera's motion (median epipolar "
+        "distance %.1f px): excluded",
+        timeText(r.t).c_str(), r.plane_id, r.error_px);
+  }
   // The estimator may have corrected the offset on this frame: the frame's time moved with it.
   previous_frame_t_ = frame.t + (estimator_->timeOffset() - offset);
   if (!estimator_->timeOffsetNote().empty() && !time_offset_reported_) {

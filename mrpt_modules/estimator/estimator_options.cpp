@@ -5,6 +5,10 @@ namespace rpvio {
 void EstimatorOptions::validate(const OptionsLoader& loader) const {
   loader.require(window_size >= 3, "window_size", "must be at least 3");
   loader.require(max_iterations >= 0, "max_iterations", "must be 0 or more");
+  loader.require(verify_static_px < verify_moving_px, "verify_moving_px",
+                 "must be more than verify_static_px");
+  loader.require(verify_reject_after >= 1, "verify_reject_after", "must be 1 or more");
+  loader.require(verify_min_features >= 3, "verify_min_features", "must be 3 or more");
 }
 
 ImuLinkOptions EstimatorOptions::imuLinkOptions() const {
@@ -13,6 +17,20 @@ ImuLinkOptions EstimatorOptions::imuLinkOptions() const {
   o.gap_noise_inflation = imu_gap_noise_inflation;
   o.min_saturated_accel = min_saturated_accel;
   o.min_saturated_gyro = min_saturated_gyro;
+  return o;
+}
+
+PlaneVerifierOptions EstimatorOptions::planeVerifierOptions() const {
+  PlaneVerifierOptions o;
+  o.enabled = verify_planes;
+  o.span_s = verify_span_s;
+  o.min_parallax_px = verify_min_parallax_px;
+  o.min_features = verify_min_features;
+  o.static_px = verify_static_px;
+  o.moving_px = verify_moving_px;
+  o.moving_noise_ratio = verify_moving_noise_ratio;
+  o.reject_after = verify_reject_after;
+  o.focal_px = virtual_focal;
   return o;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // The options of the sliding-window estimator (section [SlidingWindowEstimatorModule]).
 #include "common/options.h"
+#include "mrpt_modules/estimator/plane_verifier.h"
 #include "mrpt_modules/imu/imu_link.h"
 #include "mrpt_modules/initialization/initializer.h"
 
@@ -75,6 +76,20 @@ struct EstimatorOptions {
   bool estimate_time_offset = true;
   double min_time_offset_s = 0.010;
   double max_time_offset_s = 0.05;
+  // Mask planes that move against the camera's motion are excluded (plane_verifier.h): frames
+  // verify_span_s apart are compared, judging planes with verify_min_features common features
+  // and verify_min_parallax_px of rotation-compensated parallax. A plane whose median epipolar
+  // distance (px at virtual_focal) from the consensus translation exceeds verify_moving_px and
+  // verify_moving_noise_ratio times the check's noise on verify_reject_after consecutive checks
+  // is rejected for the run; one within verify_static_px agrees, which clears its count.
+  bool verify_planes = false;
+  double verify_span_s = 0.3;
+  double verify_min_parallax_px = 4;
+  size_t verify_min_features = 8;
+  double verify_static_px = 0.5;
+  double verify_moving_px = 1.0;
+  double verify_moving_noise_ratio = 8;
+  int verify_reject_after = 3;
 
   template <class Visitor>
   void fields(Visitor& v) {
@@ -112,9 +127,18 @@ struct EstimatorOptions {
     RPVIO_OPTION(v, estimate_time_offset);
     RPVIO_OPTION(v, min_time_offset_s);
     RPVIO_OPTION(v, max_time_offset_s);
+    RPVIO_OPTION(v, verify_planes);
+    RPVIO_OPTION(v, verify_span_s);
+    RPVIO_OPTION(v, verify_min_parallax_px);
+    RPVIO_OPTION(v, verify_min_features);
+    RPVIO_OPTION(v, verify_static_px);
+    RPVIO_OPTION(v, verify_moving_px);
+    RPVIO_OPTION(v, verify_moving_noise_ratio);
+    RPVIO_OPTION(v, verify_reject_after);
   }
   void validate(const OptionsLoader& loader) const;
   ImuLinkOptions imuLinkOptions() const;
+  PlaneVerifierOptions planeVerifierOptions() const;
   /// The first initializer's options (the others are variants of it).
   InitializerOptions initializerOptions() const;
 };

@@ -27,6 +27,13 @@ struct PlaneEstimate {
 
 using PlaneEstimates = std::map<int, PlaneEstimate>;
 
+/// A mask plane found moving against the camera's motion and excluded (plane_verifier.h).
+struct PlaneRejection {
+  double t = 0;  // frame time (IMU clock)
+  int plane_id = 0;
+  double error_px = 0;  // median epipolar distance at the deciding check
+};
+
 struct ResetEvent {
   double t = 0;
   std::string cause;
@@ -39,6 +46,7 @@ struct EstimatorSummary {
   std::string time_offset_note;
   std::vector<ResetEvent> resets;
   std::string status;  // the last status with its figures (why it is not tracking)
+  std::vector<PlaneRejection> rejected_planes;  // mask planes found moving (plane_verifier.h)
 };
 
 }  // namespace rpvio

@@ -38,6 +38,7 @@ SlidingWindowEstimator::SlidingWindowEstimator(const Calibration& calibration,
                 calibration.imu.gravity, options.imuLinkOptions()),
       bootstrapper_(calibration, options, imu_link_),
       planes_(options.homography_planes),
+      plane_verifier_(options.planeVerifierOptions()),
       map_(map) {
   setPoseBlock(calib_.T_BC, mount_);
 }
@@ -369,8 +370,35 @@ void SlidingWindowEstimator::reset(const std::string& cause,
   bootstrapper_.restart(imu_since_good, status_);
 }
 
+FeatureFrame SlidingWindowEstimator::verifyPlanes(const FeatureFrame& frame,
+                                                  const std::vector<ImuSample>& imu) {
+  if (!options_.verify_planes) return frame;
+  std::optional<Eigen::Quaterniond> rotation;  // camera k in camera k-1, from the gyroscope
+  static const double kNoBias[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+  if (const auto pre =
+          verified_until_t_ < 0
+              ? nullptr
+              : imu_link_.preintegrate(imu, verified_until_t_, frame.t,
+                                       initialized_ ? window_.back()->speed_bias : kNoBias)) {
+    const Eigen::Quaterniond q_BC(calib_.T_BC.linear());
+    rotation = q_BC.inverse() * pre->deltaQ() * q_BC;
+  }
+  verified_until_t_ = frame.t;
+  const size_t known = plane_verifier_.rejections().size();
+  FeatureFrame kept = plane_verifier_.filter(frame, rotation);
+  for (size_t i = known; i < plane_verifier_.rejections().size(); ++i) {
+    const int plane = plane_verifier_.rejections()[i].plane_id;
+    auto& tracks = features_.tracks();
+    for (auto it = tracks.begin(); it != tracks.end();)
+      it = it->second.plane_id == plane ? tracks.erase(it) : std::next(it);
+  }
+  if (initialized_ && plane_verifier_.rejections().size() > known) forgetUnseenPlanes();
+  return kept;
+}
+
 std::optional<StateEstimate> SlidingWindowEstimator::addFrame(
-    const FeatureFrame& frame, const std::vector<ImuSample>& imu_since_previous) {
+    const FeatureFrame& camera_frame, const std::vector<ImuSample>& imu_since_previous) {
+  const FeatureFrame frame = verifyPlanes(camera_frame, imu_since_previous);
   const auto start = std::chrono::steady_clock::now();
   auto elapsed_ms = [&] {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)

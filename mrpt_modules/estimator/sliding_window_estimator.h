@@ -36,6 +36,7 @@
 #include "mrpt_modules/estimator/estimator_types.h"
 #include "mrpt_modules/estimator/feature_manager.h"
 #include "mrpt_modules/estimator/map_sink.h"
+#include "mrpt_modules/estimator/plane_verifier.h"
 #include "mrpt_modules/estimator/window_planes.h"
 #include "mrpt_modules/factors/marginalization.h"
 #include "mrpt_modules/imu/imu_link.h"
@@ -72,6 +73,10 @@ class SlidingWindowEstimator {
   double timeOffset() const { return bootstrapper_.timeOffset(); }
   /// What the time-offset estimation found ("" before it ran).
   const std::string& timeOffsetNote() const { return bootstrapper_.timeOffsetNote(); }
+  /// The mask planes found moving so far (with verify_planes), in the order they were.
+  const std::vector<PlaneRejection>& planeRejections() const {
+    return plane_verifier_.rejections();
+  }
   /// Once, at the end of a run: the window's current planes and keyframes to the map, then
   /// WindowFinished (the map merges its duplicates and runs the batch refinement).
   void finishMap();
@@ -79,6 +84,9 @@ class SlidingWindowEstimator {
  private:
   /// The window's current planes to the map (done as keyframes leave the window).
   void flushPlanes();
+  /// The frame without the features of the planes found moving (plane_verifier.h), each newly
+  /// found one also removed from the window.
+  FeatureFrame verifyPlanes(const FeatureFrame& frame, const std::vector<ImuSample>& imu);
   struct Frame {
     uint64_t id = 0;
     FeatureFrame features;
@@ -124,6 +132,8 @@ class SlidingWindowEstimator {
   FeatureManager features_;
   std::shared_ptr<const MarginalizationPrior> prior_;
   WindowPlanes planes_;
+  PlaneVerifier plane_verifier_;
+  double verified_until_t_ = -1;  // the last frame the verifier saw
   MapSink& map_;
   double last_seen_features_t_ = 0;
 };

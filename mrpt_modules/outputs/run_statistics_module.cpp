@@ -45,6 +45,14 @@ std::vector<JsonObject> resetCausesJson(const std::vector<ResetEvent>& resets) {
   return out;
 }
 
+std::vector<JsonObject> planeRejectionsJson(const std::vector<PlaneRejection>& rejections) {
+  std::vector<JsonObject> out;
+  for (const PlaneRejection& r : rejections)
+    out.push_back(
+        JsonObject().integer("plane", r.plane_id).number("t", r.t).number("error_px", r.error_px));
+  return out;
+}
+
 }  // namespace
 
 void RunStatisticsModule::initialize(const IniFile&, const std::string& section,
@@ -115,6 +123,7 @@ void RunStatisticsModule::write(double wall) const {
       .text("time_offset_note", e.time_offset_note)
       .integer("resets", static_cast<long long>(e.resets.size()))
       .objects("reset_causes", resetCausesJson(e.resets))
+      .objects("planes_rejected_as_moving", planeRejectionsJson(e.rejected_planes))
       .number("total_ms_median", percentile(total_ms, 0.5))
       .number("total_ms_p95", percentile(total_ms, 0.95))
       .number("load_ms_median", percentile(load_ms, 0.5))

@@ -164,6 +164,19 @@ TEST(AdvioImport, AccelerometerScaleDetection) {
   }
 }
 
+TEST(AdvioImport, GivenCalibrationReplacesTheBatchsBiasesToo) {
+  const FakeAdvio advio("advio-05", 3);  // readings carry batch 1's biases
+  test::TempDir out;
+  AdvioImportOptions opt = advio.options(out.file("seq.rawlog"));
+  opt.calibration = advioCalibration(5);
+  const AdvioImportCounts counts = importAdvio(opt);
+  EXPECT_EQ(counts.batch, 0);
+  const std::vector<ImuSample> imu = importedImu(opt.output_rawlog);
+  ASSERT_FALSE(imu.empty());
+  // The gyroscope's bias stays in: (0.1, 0.2, 0.3) + (-0.0067, 0.0070, -0.0065).
+  EXPECT_LT((imu[0].gyro - Eigen::Vector3d(0.0933, 0.207, 0.2935)).norm(), 1e-9);
+}
+
 TEST(AdvioImport, VideoLongerThanItsStampsIsCut) {
   const FakeAdvio advio("advio-02", 6);
   std::ofstream(advio.dir / "iphone/frames.csv") << "1.0,0\n1.0166,1\n1.0333,2\n1.05,3\n";
@@ -188,11 +201,20 @@ TEST(AdvioImportBadInput, OneLineErrorAndNothingWritten) {
       {"wrong turn", "--rotate none", "once turned, the calibration says 720x1280", nullptr},
       {"missing video", "", "frames.mov: file not found",
        [](const FakeAdvio& a) { fs::remove(a.dir / "iphone/frames.mov"); }},
+      {"damaged video", "", "cannot be decoded",
+       [](const FakeAdvio& a) {
+         const fs::path video = a.dir / "iphone/frames.mov";
+         std::fstream f(video, std::ios::in | std::ios::out | std::ios::binary);
+         f.seekp(fs::file_size(video) / 4);
+         const std::string zeros(fs::file_size(video) / 2, '\0');
+         f.write(zeros.data(), zeros.size());
+       }},
       {"stamps backwards", "", "frames.csv:line 2: timestamps not increasing",
        [](const FakeAdvio& a) { std::ofstream(a.dir / "iphone/frames.csv") << "1.0,0\n0.9,1\n"; }},
   };
   for (const Case& c : cases) {
-    const FakeAdvio advio(c.what == "unknown batch" ? "phone-run" : "advio-03", 3);
+    const FakeAdvio advio(c.what == "unknown batch" ? "phone-run" : "advio-03",
+                          c.what == "damaged video" ? 60 : 3);
     if (c.spoil) c.spoil(advio);
     test::TempDir out;
     std::string output;
