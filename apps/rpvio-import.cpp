@@ -16,6 +16,15 @@
 
 namespace {
 
+/// --accel-scale S: a nonzero factor.
+double accelScale(const rpvio::apps::CommandLine& cli) {
+  const double scale = cli.number("accel-scale", 0);
+  if (!std::isfinite(scale) || scale == 0)
+    throw rpvio::apps::UsageError(
+        "--accel-scale: a nonzero factor (9.80665: readings in g; -9.80665: CoreMotion's g)");
+  return scale;
+}
+
 rpvio::BagImportOptions bagOptions(const rpvio::apps::CommandLine& cli) {
   using namespace rpvio;
   BagPreset preset;
@@ -43,6 +52,7 @@ rpvio::BagImportOptions bagOptions(const rpvio::apps::CommandLine& cli) {
   else
     throw apps::UsageError("the preset has no calibration: give --calib calib.ini");
   opt.imu_rate_hz = cli.number("imu-rate", preset.imu_rate_hz);
+  if (cli.has("accel-scale")) opt.accel_scale = accelScale(cli);
   const auto beside =
       std::filesystem::path(opt.bag_path).parent_path() / preset.groundtruth_beside_bag;
   if (cli.has("gt")) {
@@ -65,11 +75,7 @@ rpvio::AdvioImportOptions advioOptions(const rpvio::apps::CommandLine& cli) {
     throw apps::UsageError(std::string("--rotate: ") + e.what());
   }
   if (cli.has("calib")) opt.calibration = loadCalibration(cli.value("calib"));
-  if (cli.valueOr("accel-scale", "auto") != "auto") {
-    opt.accel_scale = cli.number("accel-scale", 0);
-    if (!std::isfinite(*opt.accel_scale) || *opt.accel_scale == 0)
-      throw apps::UsageError("--accel-scale: auto or a nonzero factor (-9.80665: CoreMotion's g)");
-  }
+  if (cli.valueOr("accel-scale", "auto") != "auto") opt.accel_scale = accelScale(cli);
   opt.subtract_batch_bias = !cli.has("keep-bias");
   return opt;
 }
@@ -81,7 +87,8 @@ const char* kUsage =
     "  GROUND_TRUTH; writes calib.ini beside the rawlog.\n"
     "usage: rpvio-import rosbag --bag FILE.bag --preset rpvio-sim|viode|openloris|advio|generic\n"
     "                    [--image-topic T] [--imu-topic T] [--accel-topic T] [--mask-topic T]\n"
-    "                    [--gt-topic T] [--calib calib.ini] [--imu-rate HZ] [--gt FILE.tum]\n"
+    "                    [--gt-topic T] [--calib calib.ini] [--imu-rate HZ] [--accel-scale S]\n"
+    "                    [--gt FILE.tum]\n"
     "                    --out FILE.rawlog\n"
     "  Converts a ROS1 bag (no ROS needed): image topic -> CAM0 (mono8, rgb8, bgr8, rgba8, bgra8,\n"
     "  mono16), mask topic -> PLANE_MASK (mono8 plane ids, paired by identical stamp), IMU topic\n"

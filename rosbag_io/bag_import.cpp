@@ -99,7 +99,7 @@ void requireAccelerationInMetresPerSecondSquared(const std::vector<ImuSample>& i
     char text[200];
     std::snprintf(text, sizeof text,
                   "median |linear_acceleration| is %.3f, not about gravity (%.2f m/s^2): "
-                  "sensor_msgs/Imu is in m/s^2",
+                  "sensor_msgs/Imu is in m/s^2 (in g? --accel-scale 9.80665)",
                   median, gravity);
     throw InputError(path, topic, text);
   }
@@ -231,11 +231,12 @@ BagImportCounts importBag(const BagImportOptions& opt,
       requireTopic(bag, path, opt.topics.groundtruth, "nav_msgs/Odometry",
                    "geometry_msgs/PoseStamped");
     if (!opt.topics.accel.empty()) requireTopic(bag, path, opt.topics.accel, "sensor_msgs/Imu");
-    const std::vector<ImuSample> imu = decimateImu(
+    std::vector<ImuSample> imu = decimateImu(
         opt.topics.accel.empty() ? readImuTopic(bag, path, opt.topics.imu)
                                  : mergeSplitImu(readImuTopic(bag, path, opt.topics.imu),
                                                  readImuTopic(bag, path, opt.topics.accel)),
         opt.imu_rate_hz);
+    for (ImuSample& sample : imu) sample.accel *= opt.accel_scale;
     requireAccelerationInMetresPerSecondSquared(
         imu, opt.calibration.imu.gravity, path,
         opt.topics.accel.empty() ? opt.topics.imu : opt.topics.accel);

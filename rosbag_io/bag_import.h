@@ -46,7 +46,8 @@ struct BagImportOptions {
   BagTopics topics;
   Calibration calibration;
   double imu_rate_hz = 0;
-  std::string groundtruth_file;          // TUM, optional
+  double accel_scale = 1;        // the accelerations times this (a bag recorded in g: 9.80665)
+  std::string groundtruth_file;  // TUM, optional
   std::vector<MaskColour> mask_colours;  // empty: masks are mono8 plane ids
 };
 

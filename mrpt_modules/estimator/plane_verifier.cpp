@@ -53,7 +53,7 @@ double medianEpipolarDistance(const std::vector<BearingPair>& pairs, const Eigen
 }  // namespace
 
 PlaneVerifier::CheckResult PlaneVerifier::check(const FeatureFrame& j, const FeatureFrame& k,
-                                           const Eigen::Matrix3d& R_kj) const {
+                                                const Eigen::Matrix3d& R_kj) const {
   std::unordered_map<int, const TrackedFeature*> in_j;
   for (const TrackedFeature& f : j.features) in_j[f.id] = &f;
   std::map<int, std::vector<BearingPair>> by_plane;
@@ -102,8 +102,8 @@ PlaneVerifier::CheckResult PlaneVerifier::check(const FeatureFrame& j, const Fea
   std::vector<double> distances;
   for (const Judged& q : judged)
     for (const BearingPair& p : *q.pairs) distances.push_back(epipolarDistance(p, best_t));
-  const size_t agreeing = std::count_if(distances.begin(), distances.end(),
-                                        [&](double d) { return d < static_limit; });
+  const size_t agreeing =
+      std::count_if(distances.begin(), distances.end(), [&](double d) { return d < static_limit; });
   if (2 * agreeing <= total) return {};
   CheckResult result;
   result.noise_px = median(distances) * options_.focal_px;
@@ -124,7 +124,8 @@ FeatureFrame PlaneVerifier::filter(const FeatureFrame& frame,
   for (auto it = history_.rbegin(); it != history_.rend() && !reference; ++it)
     if (frame.t - it->frame.t >= options_.span_s) reference = &*it;
   if (reference) {
-    const Eigen::Matrix3d R_kj = (orientation.inverse() * reference->orientation).toRotationMatrix();
+    const Eigen::Matrix3d R_kj =
+        (orientation.inverse() * reference->orientation).toRotationMatrix();
     const CheckResult result = check(reference->frame, frame, R_kj);  // rejected planes left out
     const double moving_px =
         std::max(options_.moving_px, options_.moving_noise_ratio * result.noise_px);
@@ -144,11 +145,10 @@ FeatureFrame PlaneVerifier::filter(const FeatureFrame& frame,
 
   FeatureFrame kept = frame;
   if (!rejected_.empty())
-    kept.features.erase(std::remove_if(kept.features.begin(), kept.features.end(),
-                                       [&](const TrackedFeature& f) {
-                                         return rejected_.count(f.plane_id) > 0;
-                                       }),
-                        kept.features.end());
+    kept.features.erase(
+        std::remove_if(kept.features.begin(), kept.features.end(),
+                       [&](const TrackedFeature& f) { return rejected_.count(f.plane_id) > 0; }),
+        kept.features.end());
   return kept;
 }
 

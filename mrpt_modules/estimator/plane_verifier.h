@@ -27,14 +27,14 @@ namespace rpvio {
 
 struct PlaneVerifierOptions {
   bool enabled = false;
-  double span_s = 0.3;           // frames this far apart are compared
-  double min_parallax_px = 4;    // rotation-compensated, median over the plane's features
-  size_t min_features = 8;       // common to both frames, per plane
-  double static_px = 0.5;        // median epipolar distance: agrees with the camera's motion
-  double moving_px = 1.0;        // ... disagrees, and more than
+  double span_s = 0.3;            // frames this far apart are compared
+  double min_parallax_px = 4;     // rotation-compensated, median over the plane's features
+  size_t min_features = 8;        // common to both frames, per plane
+  double static_px = 0.5;         // median epipolar distance: agrees with the camera's motion
+  double moving_px = 1.0;         // ... disagrees, and more than
   double moving_noise_ratio = 8;  // ... times the check's noise (all features' median distance)
-  int reject_after = 3;          // consecutive disagreements
-  double focal_px = 460;         // pixel scale of the thresholds
+  int reject_after = 3;           // consecutive disagreements
+  double focal_px = 460;          // pixel scale of the thresholds
 };
 
 class PlaneVerifier {

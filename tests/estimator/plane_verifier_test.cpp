@@ -50,9 +50,8 @@ PlaneVerifier run(const Eigen::Vector3d& panel_velocity, bool enabled = true) {
     FeatureFrame frame;
     frame.t = t;
     for (const ScenePoint& p : points) {
-      const Eigen::Vector3d X =
-          p.at_t0 + (p.plane == kPanel ? Eigen::Vector3d(panel_velocity * t)
-                                       : Eigen::Vector3d::Zero().eval());
+      const Eigen::Vector3d X = p.at_t0 + (p.plane == kPanel ? Eigen::Vector3d(panel_velocity * t)
+                                                             : Eigen::Vector3d::Zero().eval());
       const Eigen::Vector3d X_c = cameraRotation(t).transpose() * (X - cameraPosition(t));
       if (X_c.z() < 0.5 || std::abs(X_c.x() / X_c.z()) > 0.8 || std::abs(X_c.y() / X_c.z()) > 0.6)
         continue;

@@ -370,6 +370,8 @@ TEST(BagImport, BadInputIsOneErrorAndNoOutput) {
   EXPECT_NE(units.find(":/imu0: median |linear_acceleration| is 1.000, not about gravity"),
             std::string::npos)
       << units;
+  opt.accel_scale = 9.80665;  // said to be in g: imported
+  EXPECT_EQ(importBag(opt).imu, 3u);
 
   test::TempDir truncated;
   writeBag(truncated.file("in.bag"), "mono8", rosbag::compression::Uncompressed);
