@@ -375,8 +375,11 @@ FeatureFrame SlidingWindowEstimator::verifyPlanes(const FeatureFrame& frame,
   if (!options_.verify_planes) return frame;
   std::optional<Eigen::Quaterniond> rotation;  // camera k in camera k-1, from the gyroscope
   static const double kNoBias[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+  // A corrected time offset moved this frame's time against the previous one's: start again.
+  const bool same_clock = verified_offset_ == bootstrapper_.timeOffset();
+  verified_offset_ = bootstrapper_.timeOffset();
   if (const auto pre =
-          verified_until_t_ < 0
+          verified_until_t_ < 0 || !same_clock
               ? nullptr
               : imu_link_.preintegrate(imu, verified_until_t_, frame.t,
                                        initialized_ ? window_.back()->speed_bias : kNoBias)) {

@@ -134,6 +134,7 @@ class SlidingWindowEstimator {
   WindowPlanes planes_;
   PlaneVerifier plane_verifier_;
   double verified_until_t_ = -1;  // the last frame the verifier saw
+  double verified_offset_ = 0;    // ... and the time offset then
   MapSink& map_;
   double last_seen_features_t_ = 0;
 };
