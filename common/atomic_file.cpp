@@ -1,8 +1,11 @@
 #include "common/atomic_file.h"
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <stdexcept>
+
+#include "common/input_error.h"
 
 namespace rpvio {
 
@@ -30,6 +33,13 @@ void writeFileAtomically(const std::string& path, const std::function<void(std::
     }
   }
   commitTemporary(path);
+}
+
+std::string existingOutputFolder(const std::string& path) {
+  const std::filesystem::path p(path);
+  const std::filesystem::path folder = p.has_parent_path() ? p.parent_path() : ".";
+  if (!std::filesystem::is_directory(folder)) throw InputError(path, "", "output folder not found");
+  return folder.string();
 }
 
 }  // namespace rpvio

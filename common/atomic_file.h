@@ -14,4 +14,8 @@ void writeFileAtomically(const std::string& path, const std::function<void(std::
 void commitTemporary(const std::string& path);
 std::string temporaryPathFor(const std::string& path);
 
+/// The folder `path` will be written into ("." for a bare name); InputError(path) when it does
+/// not exist, so that a run fails before reading its inputs.
+std::string existingOutputFolder(const std::string& path);
+
 }  // namespace rpvio

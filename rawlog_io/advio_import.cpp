@@ -11,6 +11,7 @@
 #include <regex>
 #include <stdexcept>
 
+#include "common/atomic_file.h"
 #include "common/input_error.h"
 #include "common/text_table.h"
 #include "rawlog_io/calibration.h"
@@ -33,44 +34,20 @@ struct AdvioBatch {
   Eigen::Vector3d accel_bias, gyro_bias;  // approximate, additive, in the files' units
 };
 
+// One batch per row, as the dataset's table prints them.
+// clang-format off
 const AdvioBatch kBatches[] = {
-    {1,
-     12,
-     1077.2,
-     1079.3,
-     362.145,
-     636.3873,
-     {0.0478, 0.0339, -0.00033, -0.00091},
-     {0.0407, -0.0623, 0.1017},
-     {-0.0067, 0.0070, -0.0065}},
-    {13,
-     17,
-     1082.4,
-     1084.4,
-     364.6778,
-     643.3080,
-     {0.0366, 0.0803, 0.000783, -0.000215},
-     {0.0415, -0.0617, 0.1008},
-     {-0.0065, 0.0055, -0.0064}},
-    {18,
-     19,
-     1076.9,
-     1078.5,
-     360.96,
-     639.31,
-     {0.0510, -0.0354, -0.0054, 0.0473},
-     {0.0393, -0.0635, 0.1024},
-     {-0.0069, 0.0062, -0.0067}},
-    {20,
-     23,
-     1081.1,
-     1082.1,
-     359.59,
-     640.79,
-     {0.0556, -0.0454, 0.0009, -0.0018},
-     {0.0405, -0.0620, 0.1012},
-     {-0.0066, 0.0065, -0.0063}},
+    // sequences, fx, fy, cx, cy, k1 k2 p1 p2; then the accelerometer and gyroscope biases
+    {1, 12,   1077.2, 1079.3, 362.145,  636.3873, {0.0478, 0.0339,  -0.00033,  -0.00091},
+     {0.0407, -0.0623, 0.1017}, {-0.0067, 0.0070, -0.0065}},
+    {13, 17,  1082.4, 1084.4, 364.6778, 643.3080, {0.0366, 0.0803,  0.000783,  -0.000215},
+     {0.0415, -0.0617, 0.1008}, {-0.0065, 0.0055, -0.0064}},
+    {18, 19,  1076.9, 1078.5, 360.96,   639.31,   {0.0510, -0.0354, -0.0054,   0.0473},
+     {0.0393, -0.0635, 0.1024}, {-0.0069, 0.0062, -0.0067}},
+    {20, 23,  1081.1, 1082.1, 359.59,   640.79,   {0.0556, -0.0454, 0.0009,    -0.0018},
+     {0.0405, -0.0620, 0.1012}, {-0.0066, 0.0065, -0.0063}},
 };
+// clang-format on
 
 const AdvioBatch& batchOf(int sequence) {
   for (const AdvioBatch& b : kBatches)
@@ -152,8 +129,7 @@ Calibration advioCalibration(int sequence) {
   R << 0.9999763379093255, -0.004079205042965442, -0.005539287650170447,  //
       -0.004066386342107199, -0.9999890330121858, 0.0023234365646622014,  //
       -0.00554870467502187, -0.0023008567036498766, -0.9999819588046867;
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  c.T_BC.linear() = svd.matrixU() * svd.matrixV().transpose();  // printed to 16 digits
+  c.T_BC.linear() = nearestRotation(R);  // printed to 16 digits
   c.T_BC.translation() =
       Eigen::Vector3d(-0.008977668364731128, 0.07557012320238939, -0.005545773942541918);
   // The same configuration's figures, for the IMU's 100 Hz.
@@ -203,10 +179,7 @@ AdvioImportCounts importAdvio(const AdvioImportOptions& opt,
     throw InputError(opt.sequence_dir, "", "not an ADVIO sequence folder (no iphone/ in it)");
   if (opt.every < 1)
     throw InputError(opt.sequence_dir, "", "keeping every N-th frame needs N >= 1");
-  const fs::path out(opt.output_rawlog);
-  const fs::path out_dir = out.has_parent_path() ? out.parent_path() : fs::path(".");
-  if (!fs::is_directory(out_dir))
-    throw InputError(opt.output_rawlog, "", "output folder not found");
+  const fs::path out_dir = existingOutputFolder(opt.output_rawlog);
 
   AdvioImportCounts counts;
   Calibration calib;
@@ -235,7 +208,7 @@ AdvioImportCounts importAdvio(const AdvioImportOptions& opt,
   const std::vector<TimedRow> gyro_rows =
       readTimedCsv(existingFile(iphone, {"gyro.csv", "gyroscope.csv"}), 3);
 
-  const bool unbias = batch && !opt.calibration && opt.subtract_batch_bias;
+  const bool unbias = batch && opt.subtract_batch_bias;  // no batch with --calib
   std::vector<Eigen::Vector3d> accel_readings;
   for (const TimedRow& r : accel_rows)
     accel_readings.push_back(vec3(r) - (unbias ? batch->accel_bias : Eigen::Vector3d::Zero()));

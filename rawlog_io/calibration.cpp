@@ -1,5 +1,6 @@
 #include "rawlog_io/calibration.h"
 
+#include <Eigen/SVD>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -102,6 +103,11 @@ void saveCalibration(const std::string& path, const Calibration& c) {
         << "\naccel_random_walk = " << c.imu.accel_random_walk << "\nrate_hz = " << c.imu.rate_hz
         << "\ngravity = " << c.imu.gravity << "\n";
   });
+}
+
+Eigen::Matrix3d nearestRotation(const Eigen::Matrix3d& R) {
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  return svd.matrixU() * svd.matrixV().transpose();
 }
 
 ImuNoise imuNoiseFromVinsMono(double acc_n, double gyr_n, double acc_w, double gyr_w,

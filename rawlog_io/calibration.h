@@ -23,6 +23,9 @@ Calibration loadCalibration(const std::string& path);
 /// Writes to a temporary name and renames it when complete.
 void saveCalibration(const std::string& path, const Calibration& calibration);
 
+/// The rotation nearest to `R` (Frobenius): a matrix printed with few digits made orthonormal.
+Eigen::Matrix3d nearestRotation(const Eigen::Matrix3d& R);
+
 /// IMU noise in the figures of VINS-Mono-style configurations (acc_n, gyr_n, acc_w, gyr_w, which
 /// they call discrete-time standard deviations, for samples at `rate_hz`) as the densities of
 /// calib.ini that give this program's preintegration the covariance VINS-Mono's midpoint

@@ -8,6 +8,7 @@
 #include <regex>
 #include <sstream>
 
+#include "common/atomic_file.h"
 #include "common/input_error.h"
 #include "common/input_file.h"
 #include "common/text_table.h"
@@ -79,12 +80,8 @@ Eigen::Isometry3d yamlTransform(const std::string& path) {
   // Re-orthonormalize the rotation (the files print ~12 digits); one written with every digit
   // (rpvio-export euroc) is kept as it is.
   const Eigen::Matrix3d R = m.topLeftCorner<3, 3>();
-  if ((R.transpose() * R - Eigen::Matrix3d::Identity()).norm() < 1e-14) {
-    T.linear() = R;
-  } else {
-    Eigen::JacobiSVD<Eigen::Matrix3d> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
-    T.linear() = svd.matrixU() * svd.matrixV().transpose();
-  }
+  T.linear() =
+      (R.transpose() * R - Eigen::Matrix3d::Identity()).norm() < 1e-14 ? R : nearestRotation(R);
   T.translation() = m.topRightCorner<3, 1>();
   return T;
 }
@@ -159,10 +156,7 @@ EurocImportCounts importEuroc(const EurocImportOptions& opt,
   if (!fs::is_directory(opt.mav0_dir)) throw InputError(opt.mav0_dir, "", "folder not found");
   if (!opt.masks_dir.empty() && !fs::is_directory(opt.masks_dir))
     throw InputError(opt.masks_dir, "", "masks folder not found");
-  const fs::path out(opt.output_rawlog);
-  const fs::path out_dir = out.has_parent_path() ? out.parent_path() : fs::path(".");
-  if (!fs::is_directory(out_dir))
-    throw InputError(opt.output_rawlog, "", "output folder not found");
+  const fs::path out_dir = existingOutputFolder(opt.output_rawlog);
   const Calibration calib = readEurocCalibration(opt.mav0_dir);
   const auto images = readImageList(opt.mav0_dir);
   const auto imu = readEurocImuCsv(opt.mav0_dir + "/imu0/data.csv");

@@ -69,8 +69,7 @@ RawlogWriter::RawlogWriter(const std::string& path, const Calibration& calib)
     : impl_(std::make_unique<Impl>()) {
   impl_->path = path;
   const fs::path p(path);
-  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
-  if (!fs::is_directory(dir)) throw InputError(path, "", "output folder does not exist");
+  const fs::path dir = existingOutputFolder(path);
   if (fs::is_directory(p)) throw InputError(path, "", "is a folder, not a rawlog file name");
   impl_->images_dir = (dir / (p.stem().string() + "_Images")).string();
   impl_->images_tmp_dir = impl_->images_dir + ".tmp";

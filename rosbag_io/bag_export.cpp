@@ -47,9 +47,7 @@ cv::Mat planeIds(const cv::Mat& labels) {
 
 BagExportCounts exportBag(const std::string& rawlog_path, const std::string& bag_path,
                           const std::function<void(size_t)>& progress) {
-  const fs::path bag_dir =
-      fs::path(bag_path).has_parent_path() ? fs::path(bag_path).parent_path() : fs::path(".");
-  if (!fs::is_directory(bag_dir)) throw InputError(bag_path, "", "output folder not found");
+  const fs::path bag_dir = existingOutputFolder(bag_path);
   const fs::path calib = fs::path(rawlog_path).parent_path() / "calib.ini";
   if (!fs::is_regular_file(calib))
     throw InputError(calib.string(), "", "missing (the rawlog's calibration is exported too)");

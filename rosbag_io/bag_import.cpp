@@ -12,6 +12,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "common/atomic_file.h"
 #include "common/input_error.h"
 #include "rawlog_io/advio_import.h"
 #include "rawlog_io/calibration.h"
@@ -167,8 +168,7 @@ Calibration openlorisCalibration() {
   R << 9.99946615e-01, 5.27582295e-03, 8.88440156e-03,  //
       -5.28478975e-03, 9.99985549e-01, 9.86100143e-04,  //
       -8.87907068e-03, -1.03299969e-03, 9.99960047e-01;
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  c.T_BC.linear() = svd.matrixU() * svd.matrixV().transpose();
+  c.T_BC.linear() = nearestRotation(R);
   c.T_BC.translation() = Eigen::Vector3d(0.020096886903, -0.00507855368778, -0.0115051260218);
   c.imu = imuNoiseFromVinsMono(0.0163, 0.0032, 0.0049, 0.0004, 200, 9.81007);
   return c;
@@ -217,10 +217,7 @@ BagImportCounts importBag(const BagImportOptions& opt,
                           const std::function<void(size_t)>& progress) {
   const std::string& path = opt.bag_path;
   if (!fs::is_regular_file(path)) throw InputError(path, "", "file not found");
-  const fs::path out(opt.output_rawlog);
-  const fs::path out_dir = out.has_parent_path() ? out.parent_path() : fs::path(".");
-  if (!fs::is_directory(out_dir))
-    throw InputError(opt.output_rawlog, "", "output folder not found");
+  const fs::path out_dir = existingOutputFolder(opt.output_rawlog);
   BagImportCounts counts;
   try {
     rosbag::Bag bag(path, rosbag::bagmode::Read);

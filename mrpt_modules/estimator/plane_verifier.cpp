@@ -43,13 +43,6 @@ Eigen::Vector3d translationDirection(const std::vector<BearingPair>& pairs) {
   return svd.matrixV().col(2);
 }
 
-double medianEpipolarDistance(const std::vector<BearingPair>& pairs, const Eigen::Vector3d& t) {
-  std::vector<double> d;
-  d.reserve(pairs.size());
-  for (const BearingPair& p : pairs) d.push_back(epipolarDistance(p, t));
-  return median(d);
-}
-
 }  // namespace
 
 PlaneVerifier::CheckResult PlaneVerifier::check(const FeatureFrame& j, const FeatureFrame& k,
@@ -87,7 +80,7 @@ PlaneVerifier::CheckResult PlaneVerifier::check(const FeatureFrame& j, const Fea
   const double limit = options_.moving_px / options_.focal_px;
   const double static_limit = options_.static_px / options_.focal_px;
   double best_cost = INFINITY;
-  Eigen::Vector3d best_t;
+  Eigen::Vector3d best_t = judged.front().t;
   for (const Judged& candidate : judged) {
     double cost = 0;
     for (const Judged& q : judged)
@@ -99,16 +92,18 @@ PlaneVerifier::CheckResult PlaneVerifier::check(const FeatureFrame& j, const Fea
     }
   }
   // A verdict only when most features agree with it; their median distance is the check's noise.
-  std::vector<double> distances;
-  for (const Judged& q : judged)
-    for (const BearingPair& p : *q.pairs) distances.push_back(epipolarDistance(p, best_t));
-  const size_t agreeing =
-      std::count_if(distances.begin(), distances.end(), [&](double d) { return d < static_limit; });
-  if (2 * agreeing <= total) return {};
   CheckResult result;
-  result.noise_px = median(distances) * options_.focal_px;
-  for (const Judged& q : judged)
-    result.distance_px[q.plane] = medianEpipolarDistance(*q.pairs, best_t) * options_.focal_px;
+  std::vector<double> all;
+  for (const Judged& q : judged) {
+    std::vector<double> distances;
+    for (const BearingPair& p : *q.pairs) distances.push_back(epipolarDistance(p, best_t));
+    all.insert(all.end(), distances.begin(), distances.end());
+    result.distance_px[q.plane] = median(distances) * options_.focal_px;
+  }
+  const size_t agreeing =
+      std::count_if(all.begin(), all.end(), [&](double d) { return d < static_limit; });
+  if (2 * agreeing <= total) return {};
+  result.noise_px = median(all) * options_.focal_px;
   return result;
 }
 
