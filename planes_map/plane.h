@@ -9,6 +9,9 @@
 
 namespace rpvio {
 
+/// Labels of discovered planes (rpvio-auto) start here, above the 8-bit mask labels.
+constexpr int kFirstDiscoveredLabel = 256;
+
 struct Plane {
   int id = 0;                                                // stable map id
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();         // world frame, unit
@@ -24,6 +27,10 @@ struct Plane {
   bool moving = false;
   OscillatingTranslation motion;
 
+  /// Found by the plane discovery (rpvio-auto).
+  bool discovered() const {
+    return !mask_ids.empty() && *mask_ids.begin() >= kFirstDiscoveredLabel;
+  }
   /// Distance of a point to the plane (signed).
   double signedDistance(const Eigen::Vector3d& x) const { return normal.dot(x) - distance; }
   /// An orthonormal in-plane basis (u, v) with u × v = n, and the point of the plane nearest 0.

@@ -78,6 +78,7 @@ void writePlanesYaml(const std::string& path, const std::vector<Plane>& planes) 
           << "\n    last_seen: " << p.last_seen << "\n    mask_ids: ";
       writeList(out, p.mask_ids);
       out << "\n";
+      if (p.discovered()) out << "    source: discovery\n";
       if (!p.moving) continue;
       const OscillatingTranslation& m = p.motion;
       out << "    moving: true\n    motion: oscillating_translation\n    motion_axis: ";
@@ -106,11 +107,14 @@ std::vector<Plane> readPlanesYaml(const std::string& path) {
     if (planes.empty())
       throw InputError(path, "line " + std::to_string(line), "entry outside a plane");
     Plane& p = planes.back();
-    if (key == "moving" || key == "motion") {
+    if (key == "moving" || key == "motion" || key == "source") {
       std::string word = value;
       word.erase(0, word.find_first_not_of(' '));
       word.erase(word.find_last_not_of(' ') + 1);
-      if (key == "moving" ? word != "true" && word != "false" : word != "oscillating_translation")
+      const bool known = key == "moving"   ? word == "true" || word == "false"
+                         : key == "motion" ? word == "oscillating_translation"
+                                           : word == "discovery";  // implied by mask_ids
+      if (!known)
         throw InputError(path, "line " + std::to_string(line),
                          "unknown " + key + " '" + word + "'");
       if (key == "moving") p.moving = word == "true";

@@ -13,7 +13,8 @@
 //       observations: 40             # updates fused into it
 //       first_seen: 1.25             # s
 //       last_seen: 79.9              # s
-//       mask_ids: [4, 17]            # labels it was seen as
+//       mask_ids: [4, 17]            # labels it was seen as (above 255: discovered planes)
+//       source: discovery            # only on planes found by the plane discovery (rpvio-auto)
 //       moving: true                 # only on moving planes (ground truth of moving objects):
 //       motion: oscillating_translation  # then plane and polygon are at t = 0 and every point
 //       motion_axis: [ax, ay, az]    #   moves by A (sin(2π t / T + φ) − sin φ) along the unit axis

@@ -27,7 +27,7 @@ namespace {
 const char* kUsage =
     "usage: rpvio-bench --suite DIR [--generate] [--profile paper|hard] [--duration SEC] [--seed "
     "S]\n"
-    "                   [--modes vins-mono,mask-vins,rpvio-single,rpvio-multi]\n"
+    "                   [--modes vins-mono,mask-vins,rpvio-single,rpvio-multi,rpvio-auto]\n"
     "                   [--sequences static,C1,C2,C4,C6,C8] [--runs N] [--jobs J]\n"
     "                   [--config-dir config] [--executor local|slurm] --out OUTDIR\n"
     "       rpvio-bench --collect OUTDIR [--resubmit-failed]\n"

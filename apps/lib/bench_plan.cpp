@@ -20,7 +20,8 @@ const std::set<std::string> kBenchFlags = {"generate", "submit-only", "resubmit-
 
 namespace {
 
-const std::vector<std::string> kModes = {"vins-mono", "mask-vins", "rpvio-single", "rpvio-multi"};
+const std::vector<std::string> kModes = {"vins-mono", "mask-vins", "rpvio-single", "rpvio-multi",
+                                         "rpvio-auto"};
 
 std::vector<std::string> splitList(const std::string& text) {
   std::vector<std::string> out;

@@ -71,7 +71,7 @@ std::optional<InitializedWindow> Bootstrapper::tryInitialize() {
   const double zero[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
   const double* biases = last_good_ ? last_good_->speed_bias : zero;
   for (size_t k = 0; k < buffer_.size(); ++k) {
-    frames.push_back(buffer_[k].first);
+    frames.push_back(screen_ ? screen_(buffer_[k].first) : buffer_[k].first);
     imu.push_back(k == 0 ? nullptr
                          : imu_link_.preintegrate(buffer_[k].second, buffer_[k - 1].first.t,
                                                   frames.back().t, biases, &calib_.imu));

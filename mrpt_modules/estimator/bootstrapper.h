@@ -5,6 +5,7 @@
 // initialization (and initializes again on the corrected frame times), and places a re-initialized
 // window in the old world by IMU dead reckoning from the last good state.
 #include <deque>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -46,6 +47,10 @@ class Bootstrapper {
   /// initialized window when an initializer succeeds on the buffered frames.
   std::optional<InitializedWindow> addFrame(const FeatureFrame& frame,
                                             const std::vector<ImuSample>& imu_since_previous);
+  /// What the initializers see of each buffered frame, applied anew at every attempt (rpvio-auto:
+  /// the plane labels discovered so far, which reach back to frames buffered before them).
+  using FrameScreen = std::function<FeatureFrame(const FeatureFrame&)>;
+  void setFrameScreen(FrameScreen screen) { screen_ = std::move(screen); }
   /// The state of a frame the estimator reported: where dead reckoning starts after a reset.
   void setGoodState(double t, const double* pose, const double* speed_bias);
   /// After a reset (`status` says why): the buffer starts anew; `imu_since_good` are the samples
@@ -90,6 +95,7 @@ class Bootstrapper {
   Initializer fallback_initializer_;  // when the configured method's geometry fails
   Initializer reinitializer_;         // after a reset
   std::deque<std::pair<FeatureFrame, std::vector<ImuSample>>> buffer_;
+  FrameScreen screen_;  // none: the frames as given
   double time_offset_ = 0;
   bool time_offset_estimated_ = false;
   std::string time_offset_note_;

@@ -38,6 +38,8 @@ void SlidingWindowEstimatorModule::finish() {
   summary.status =
       estimator_->status() == "tracking" ? estimator_->status() : estimator_->statusDetail();
   summary.rejected_planes = estimator_->planeRejections();
+  summary.planes_discovered = estimator_->planesDiscovered();
+  summary.discoveries = estimator_->planeDiscoveries();
   bus_->publish(summary);
 }
 

@@ -9,6 +9,9 @@ void EstimatorOptions::validate(const OptionsLoader& loader) const {
                  "must be more than verify_static_px");
   loader.require(verify_reject_after >= 1, "verify_reject_after", "must be 1 or more");
   loader.require(verify_min_features >= 3, "verify_min_features", "must be 3 or more");
+  loader.require(discover_min_features >= 3, "discover_min_features", "must be 3 or more");
+  loader.require(discover_confirm_after >= 1, "discover_confirm_after", "must be 1 or more");
+  loader.require(discover_reject_after >= 1, "discover_reject_after", "must be 1 or more");
 }
 
 ImuLinkOptions EstimatorOptions::imuLinkOptions() const {
@@ -30,6 +33,21 @@ PlaneVerifierOptions EstimatorOptions::planeVerifierOptions() const {
   o.moving_px = verify_moving_px;
   o.moving_noise_ratio = verify_moving_noise_ratio;
   o.reject_after = verify_reject_after;
+  o.focal_px = virtual_focal;
+  return o;
+}
+
+PlaneDiscoveryOptions EstimatorOptions::planeDiscoveryOptions() const {
+  PlaneDiscoveryOptions o;
+  o.enabled = discover_planes;
+  o.span_s = discover_span_s;
+  o.min_parallax_px = discover_min_parallax_px;
+  o.epipolar_px = discover_epipolar_px;
+  o.plane_px = discover_plane_px;
+  o.min_features = discover_min_features;
+  o.max_planes = discover_max_planes;
+  o.confirm_after = discover_confirm_after;
+  o.reject_after = discover_reject_after;
   o.focal_px = virtual_focal;
   return o;
 }

@@ -1,6 +1,7 @@
 #pragma once
 // The options of the sliding-window estimator (section [SlidingWindowEstimatorModule]).
 #include "common/options.h"
+#include "mrpt_modules/estimator/plane_discovery.h"
 #include "mrpt_modules/estimator/plane_verifier.h"
 #include "mrpt_modules/imu/imu_link.h"
 #include "mrpt_modules/initialization/initializer.h"
@@ -90,6 +91,22 @@ struct EstimatorOptions {
   double verify_moving_px = 1.0;
   double verify_moving_noise_ratio = 8;
   int verify_reject_after = 3;
+  // Mode rpvio-auto: static planes are discovered among the features of the whole image
+  // (plane_discovery.h) and only their features are used; mask labels are ignored. Frames
+  // discover_span_s apart with discover_min_parallax_px of rotation-compensated parallax are
+  // compared; a feature farther than discover_epipolar_px (px at virtual_focal) from its epipolar
+  // line moves; discover_plane_px is the transfer error within which a feature lies on a plane of
+  // at least discover_min_features. A plane found in discover_confirm_after checks is static; one
+  // whose features mostly moved in discover_reject_after consecutive checks is rejected.
+  bool discover_planes = false;
+  double discover_span_s = 0.3;
+  double discover_min_parallax_px = 4;
+  double discover_epipolar_px = 0.5;
+  double discover_plane_px = 0.5;
+  size_t discover_min_features = 10;
+  int discover_max_planes = 4;
+  int discover_confirm_after = 3;
+  int discover_reject_after = 3;
 
   template <class Visitor>
   void fields(Visitor& v) {
@@ -135,10 +152,20 @@ struct EstimatorOptions {
     RPVIO_OPTION(v, verify_moving_px);
     RPVIO_OPTION(v, verify_moving_noise_ratio);
     RPVIO_OPTION(v, verify_reject_after);
+    RPVIO_OPTION(v, discover_planes);
+    RPVIO_OPTION(v, discover_span_s);
+    RPVIO_OPTION(v, discover_min_parallax_px);
+    RPVIO_OPTION(v, discover_epipolar_px);
+    RPVIO_OPTION(v, discover_plane_px);
+    RPVIO_OPTION(v, discover_min_features);
+    RPVIO_OPTION(v, discover_max_planes);
+    RPVIO_OPTION(v, discover_confirm_after);
+    RPVIO_OPTION(v, discover_reject_after);
   }
   void validate(const OptionsLoader& loader) const;
   ImuLinkOptions imuLinkOptions() const;
   PlaneVerifierOptions planeVerifierOptions() const;
+  PlaneDiscoveryOptions planeDiscoveryOptions() const;
   /// The first initializer's options (the others are variants of it).
   InitializerOptions initializerOptions() const;
 };

@@ -34,6 +34,13 @@ struct PlaneRejection {
   double error_px = 0;  // median epipolar distance at the deciding check
 };
 
+/// A discovered plane accepted as static, or rejected as moving (plane_discovery.h).
+struct PlaneDiscoveryEvent {
+  double t = 0;  // frame time (IMU clock)
+  int plane_id = 0;
+  bool accepted = true;  // false: rejected as moving
+};
+
 struct ResetEvent {
   double t = 0;
   std::string cause;
@@ -46,7 +53,9 @@ struct EstimatorSummary {
   std::string time_offset_note;
   std::vector<ResetEvent> resets;
   std::string status;  // the last status with its figures (why it is not tracking)
-  std::vector<PlaneRejection> rejected_planes;  // mask planes found moving (plane_verifier.h)
+  std::vector<PlaneRejection> rejected_planes;   // mask planes found moving (plane_verifier.h)
+  size_t planes_discovered = 0;                  // candidate planes (rpvio-auto)
+  std::vector<PlaneDiscoveryEvent> discoveries;  // ... accepted as static or rejected as moving
 };
 
 }  // namespace rpvio

@@ -1,49 +1,10 @@
 #include "mrpt_modules/estimator/plane_verifier.h"
 
-#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
 
 namespace rpvio {
-namespace {
-
-/// A feature seen in both frames: its bearing in j turned into k's orientation, and in k.
-struct BearingPair {
-  Eigen::Vector3d rotated_j, k;
-};
-
-double median(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
-
-/// Rotation-compensated parallax of a pair, in the normalized image plane.
-double parallax(const BearingPair& p) {
-  return (p.rotated_j.hnormalized() - p.k.hnormalized()).norm();
-}
-
-/// Distance of b_k from the epipolar line of t through R_kj b_j (l = t × R_kj b_j), in the
-/// normalized image plane.
-double epipolarDistance(const BearingPair& p, const Eigen::Vector3d& t) {
-  const Eigen::Vector3d line = t.cross(p.rotated_j);
-  const double norm = line.head<2>().norm();
-  return norm > 1e-12 ? std::abs(line.dot(p.k / p.k.z())) / norm : 0;
-}
-
-/// The translation direction that best satisfies tᵀ (R_kj b_j × b_k) = 0 for all pairs: the right
-/// singular vector of the smallest singular value of the stacked, normalized constraints.
-Eigen::Vector3d translationDirection(const std::vector<BearingPair>& pairs) {
-  Eigen::MatrixX3d A(pairs.size(), 3);
-  for (size_t i = 0; i < pairs.size(); ++i) {
-    const Eigen::Vector3d row = pairs[i].rotated_j.cross(pairs[i].k);
-    A.row(i) = row.norm() > 1e-12 ? Eigen::Vector3d(row / row.norm()) : row;
-  }
-  const Eigen::JacobiSVD<Eigen::MatrixX3d> svd(A, Eigen::ComputeFullV);
-  return svd.matrixV().col(2);
-}
-
-}  // namespace
 
 PlaneVerifier::CheckResult PlaneVerifier::check(const FeatureFrame& j, const FeatureFrame& k,
                                                 const Eigen::Matrix3d& R_kj) const {
@@ -110,18 +71,10 @@ PlaneVerifier::CheckResult PlaneVerifier::check(const FeatureFrame& j, const Fea
 FeatureFrame PlaneVerifier::filter(const FeatureFrame& frame,
                                    const std::optional<Eigen::Quaterniond>& R_previous_current) {
   if (!options_.enabled) return frame;
-  if (!R_previous_current) history_.clear();
-  const Eigen::Quaterniond orientation =
-      history_.empty() ? Eigen::Quaterniond::Identity()
-                       : (history_.back().orientation * *R_previous_current).normalized();
-  // The newest past frame at least span_s older.
-  const Past* reference = nullptr;
-  for (auto it = history_.rbegin(); it != history_.rend() && !reference; ++it)
-    if (frame.t - it->frame.t >= options_.span_s) reference = &*it;
-  if (reference) {
-    const Eigen::Matrix3d R_kj =
-        (orientation.inverse() * reference->orientation).toRotationMatrix();
-    const CheckResult result = check(reference->frame, frame, R_kj);  // rejected planes left out
+  history_.push(frame, R_previous_current);
+  if (const auto* reference = history_.reference(options_.span_s)) {
+    // Rejected planes are left out of the check.
+    const CheckResult result = check(reference->frame, frame, history_.rotationFrom(*reference));
     const double moving_px =
         std::max(options_.moving_px, options_.moving_noise_ratio * result.noise_px);
     for (const auto& [plane, error_px] : result.distance_px) {
@@ -133,10 +86,7 @@ FeatureFrame PlaneVerifier::filter(const FeatureFrame& frame,
       }
     }
   }
-  history_.push_back({frame, orientation});
-  // Older frames than the newest one at least span_s before this frame are not needed again.
-  while (history_.size() > 2 && frame.t - history_[1].frame.t >= options_.span_s)
-    history_.pop_front();
+  history_.trim(options_.span_s);
 
   FeatureFrame kept = frame;
   if (!rejected_.empty())

@@ -14,7 +14,6 @@
 // consecutive checks is rejected. Surfaces moving along the camera's own
 // translation keep its epipoles and pass (a limit of any two-view test).
 #include <Eigen/Geometry>
-#include <deque>
 #include <map>
 #include <optional>
 #include <set>
@@ -22,6 +21,7 @@
 
 #include "mrpt_modules/core/feature_frame.h"
 #include "mrpt_modules/estimator/estimator_types.h"
+#include "mrpt_modules/estimator/two_view_bearings.h"
 
 namespace rpvio {
 
@@ -61,13 +61,8 @@ class PlaneVerifier {
                     const Eigen::Matrix3d& R_kj) const;
 
  private:
-  struct Past {
-    FeatureFrame frame;
-    Eigen::Quaterniond orientation;  // camera, relative to the first frame given
-  };
-
   PlaneVerifierOptions options_;
-  std::deque<Past> history_;
+  RotatedFrameHistory history_;
   std::map<int, int> disagreements_;  // consecutive, per plane
   std::set<int> rejected_;
   std::vector<PlaneRejection> rejections_;

@@ -39,8 +39,12 @@ SlidingWindowEstimator::SlidingWindowEstimator(const Calibration& calibration,
       bootstrapper_(calibration, options, imu_link_),
       planes_(options.homography_planes),
       plane_verifier_(options.planeVerifierOptions()),
+      plane_discovery_(options.planeDiscoveryOptions()),
       map_(map) {
   setPoseBlock(calib_.T_BC, mount_);
+  if (options_.discover_planes)
+    bootstrapper_.setFrameScreen(
+        [this](const FeatureFrame& f) { return plane_discovery_.labelled(f); });
 }
 
 Eigen::Isometry3d SlidingWindowEstimator::camera(uint64_t frame_id) const {
@@ -370,38 +374,55 @@ void SlidingWindowEstimator::reset(const std::string& cause,
   bootstrapper_.restart(imu_since_good, status_);
 }
 
-FeatureFrame SlidingWindowEstimator::verifyPlanes(const FeatureFrame& frame,
-                                                  const std::vector<ImuSample>& imu) {
-  if (!options_.verify_planes) return frame;
-  std::optional<Eigen::Quaterniond> rotation;  // camera k in camera k-1, from the gyroscope
+std::optional<Eigen::Quaterniond> SlidingWindowEstimator::rotationSincePreviousFrame(
+    double t, const std::vector<ImuSample>& imu) {
   static const double kNoBias[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
   // A corrected time offset moved this frame's time against the previous one's: start again.
-  const bool same_clock = verified_offset_ == bootstrapper_.timeOffset();
-  verified_offset_ = bootstrapper_.timeOffset();
+  const bool same_clock = screened_offset_ == bootstrapper_.timeOffset();
+  screened_offset_ = bootstrapper_.timeOffset();
+  std::optional<Eigen::Quaterniond> rotation;
   if (const auto pre =
-          verified_until_t_ < 0 || !same_clock
+          screened_until_t_ < 0 || !same_clock
               ? nullptr
-              : imu_link_.preintegrate(imu, verified_until_t_, frame.t,
+              : imu_link_.preintegrate(imu, screened_until_t_, t,
                                        initialized_ ? window_.back()->speed_bias : kNoBias)) {
     const Eigen::Quaterniond q_BC(calib_.T_BC.linear());
     rotation = q_BC.inverse() * pre->deltaQ() * q_BC;
   }
-  verified_until_t_ = frame.t;
-  const size_t known = plane_verifier_.rejections().size();
-  FeatureFrame kept = plane_verifier_.filter(frame, rotation);
-  for (size_t i = known; i < plane_verifier_.rejections().size(); ++i) {
-    const int plane = plane_verifier_.rejections()[i].plane_id;
-    auto& tracks = features_.tracks();
-    for (auto it = tracks.begin(); it != tracks.end();)
-      it = it->second.plane_id == plane ? tracks.erase(it) : std::next(it);
-  }
-  if (initialized_ && plane_verifier_.rejections().size() > known) forgetUnseenPlanes();
+  screened_until_t_ = t;
+  return rotation;
+}
+
+void SlidingWindowEstimator::dropPlaneFromWindow(int plane_id) {
+  auto& tracks = features_.tracks();
+  for (auto it = tracks.begin(); it != tracks.end();)
+    it = it->second.plane_id == plane_id ? tracks.erase(it) : std::next(it);
+}
+
+FeatureFrame SlidingWindowEstimator::screenPlanes(const FeatureFrame& frame,
+                                                  const std::vector<ImuSample>& imu) {
+  if (!options_.verify_planes && !options_.discover_planes) return frame;
+  const auto rotation = rotationSincePreviousFrame(frame.t, imu);
+  const size_t known_rejections = plane_verifier_.rejections().size();
+  const size_t known_discoveries = plane_discovery_.events().size();
+  FeatureFrame kept = options_.discover_planes ? plane_discovery_.label(frame, rotation) : frame;
+  kept = plane_verifier_.filter(kept, rotation);
+  std::vector<int> dropped;
+  for (size_t i = known_rejections; i < plane_verifier_.rejections().size(); ++i)
+    dropped.push_back(plane_verifier_.rejections()[i].plane_id);
+  for (size_t i = known_discoveries; i < plane_discovery_.events().size(); ++i)
+    if (!plane_discovery_.events()[i].accepted)
+      dropped.push_back(plane_discovery_.events()[i].plane_id);
+  for (const int plane : dropped) dropPlaneFromWindow(plane);
+  if (initialized_ && !dropped.empty()) forgetUnseenPlanes();
   return kept;
 }
 
 std::optional<StateEstimate> SlidingWindowEstimator::addFrame(
     const FeatureFrame& camera_frame, const std::vector<ImuSample>& imu_since_previous) {
-  const FeatureFrame frame = verifyPlanes(camera_frame, imu_since_previous);
+  const FeatureFrame frame = screenPlanes(camera_frame, imu_since_previous);
+  // While initializing, discovered labels reach back over the buffered frames (setFrameScreen).
+  const FeatureFrame& to_bootstrapper = options_.discover_planes ? camera_frame : frame;
   const auto start = std::chrono::steady_clock::now();
   auto elapsed_ms = [&] {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
@@ -410,7 +431,7 @@ std::optional<StateEstimate> SlidingWindowEstimator::addFrame(
   report_ = FrameReport{};
   if (!initialized_) {
     report_.state = "initializing";
-    const auto init = bootstrapper_.addFrame(frame, imu_since_previous);
+    const auto init = bootstrapper_.addFrame(to_bootstrapper, imu_since_previous);
     status_ = bootstrapper_.status();
     status_detail_ = bootstrapper_.statusDetail();
     if (init) startWindow(*init);

@@ -77,6 +77,11 @@ class SlidingWindowEstimator {
   const std::vector<PlaneRejection>& planeRejections() const {
     return plane_verifier_.rejections();
   }
+  /// The discovered planes accepted as static or rejected as moving so far (rpvio-auto), in order.
+  const std::vector<PlaneDiscoveryEvent>& planeDiscoveries() const {
+    return plane_discovery_.events();
+  }
+  size_t planesDiscovered() const { return plane_discovery_.segmentsFound(); }
   /// Once, at the end of a run: the window's current planes and keyframes to the map, then
   /// WindowFinished (the map merges its duplicates and runs the batch refinement).
   void finishMap();
@@ -84,9 +89,15 @@ class SlidingWindowEstimator {
  private:
   /// The window's current planes to the map (done as keyframes leave the window).
   void flushPlanes();
-  /// The frame without the features of the planes found moving (plane_verifier.h), each newly
-  /// found one also removed from the window.
-  FeatureFrame verifyPlanes(const FeatureFrame& frame, const std::vector<ImuSample>& imu);
+  /// The gyroscope's rotation from the previous frame given here to this one (camera k in camera
+  /// k-1); none on the first frame, without IMU between them or after a time-offset correction.
+  std::optional<Eigen::Quaterniond> rotationSincePreviousFrame(double t,
+                                                               const std::vector<ImuSample>& imu);
+  /// The frame's features on static planes: discovered ones (rpvio-auto, plane_discovery.h), and
+  /// without those of mask planes found moving (plane_verifier.h); planes newly rejected either
+  /// way also leave the window.
+  FeatureFrame screenPlanes(const FeatureFrame& frame, const std::vector<ImuSample>& imu);
+  void dropPlaneFromWindow(int plane_id);
   struct Frame {
     uint64_t id = 0;
     FeatureFrame features;
@@ -133,8 +144,9 @@ class SlidingWindowEstimator {
   std::shared_ptr<const MarginalizationPrior> prior_;
   WindowPlanes planes_;
   PlaneVerifier plane_verifier_;
-  double verified_until_t_ = -1;  // the last frame the verifier saw
-  double verified_offset_ = 0;    // ... and the time offset then
+  PlaneDiscovery plane_discovery_;
+  double screened_until_t_ = -1;  // the last frame screenPlanes saw
+  double screened_offset_ = 0;    // ... and the time offset then
   MapSink& map_;
   double last_seen_features_t_ = 0;
 };

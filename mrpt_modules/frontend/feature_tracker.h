@@ -56,6 +56,10 @@ struct TrackerOptions {
   // track.
   bool anchor_refinement = true;
   double max_warp_scale = 3.0;  // a track ends when its warp stretches or shrinks more than this
+  // Without masks, a track's birth patch is warped by the local affine motion of its 8 nearest
+  // neighbours (within 4 min_distance) instead of not at all: surfaces seen at an angle keep
+  // their tracks as the view changes (feature_tracker.cpp, localImageMotion).
+  bool local_warps = true;
   // Corners are detected on this pyramid level (0 = full resolution; 1 = half, 4x cheaper).
   int detection_level = 0;
 
@@ -78,6 +82,7 @@ struct TrackerOptions {
     RPVIO_OPTION(v, virtual_focal);
     RPVIO_OPTION(v, anchor_refinement);
     RPVIO_OPTION(v, max_warp_scale);
+    RPVIO_OPTION(v, local_warps);
     RPVIO_OPTION(v, detection_level);
   }
   void validate(const OptionsLoader& loader) const;

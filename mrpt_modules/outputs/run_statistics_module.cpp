@@ -53,6 +53,16 @@ std::vector<JsonObject> planeRejectionsJson(const std::vector<PlaneRejection>& r
   return out;
 }
 
+/// The discovered planes accepted (or rejected as moving): `{"plane": 257, "t": 0.45}`.
+std::vector<JsonObject> discoveriesJson(const std::vector<PlaneDiscoveryEvent>& events,
+                                        bool accepted) {
+  std::vector<JsonObject> out;
+  for (const PlaneDiscoveryEvent& e : events)
+    if (e.accepted == accepted)
+      out.push_back(JsonObject().integer("plane", e.plane_id).number("t", e.t));
+  return out;
+}
+
 }  // namespace
 
 void RunStatisticsModule::initialize(const IniFile&, const std::string& section,
@@ -124,6 +134,9 @@ void RunStatisticsModule::write(double wall) const {
       .integer("resets", static_cast<long long>(e.resets.size()))
       .objects("reset_causes", resetCausesJson(e.resets))
       .objects("planes_rejected_as_moving", planeRejectionsJson(e.rejected_planes))
+      .integer("planes_discovered", static_cast<long long>(e.planes_discovered))
+      .objects("discovered_planes_accepted", discoveriesJson(e.discoveries, true))
+      .objects("discovered_planes_rejected_as_moving", discoveriesJson(e.discoveries, false))
       .number("total_ms_median", percentile(total_ms, 0.5))
       .number("total_ms_p95", percentile(total_ms, 0.95))
       .number("load_ms_median", percentile(load_ms, 0.5))

@@ -23,9 +23,17 @@ double percentile(std::vector<double> v, double q) {
   return v[static_cast<size_t>(q * (v.size() - 1))];
 }
 
-TEST(TrackerOnSimulator, StaticSequenceTracksAtAnalyticProjections) {
+struct TrackingAccuracy {
+  double median_px, p95_px;
+  double births;  // new features per tracked feature and frame
+  size_t positions;
+};
+
+/// The tracked pixels of 5 s of the static sequence against the analytic projections of the
+/// points each track was born on.
+TrackingAccuracy staticSequenceAccuracy(const TrackerOptions& options) {
   sim::Simulator sim(config(0));
-  FeatureTracker tracker(sim.calibration().camera, TrackerOptions{});
+  FeatureTracker tracker(sim.calibration().camera, options);
   std::map<int, Eigen::Vector3d> landmark;  // feature id → 3D point seen at its detection
   std::vector<double> errors;
   size_t observations = 0, births = 0;  // after the first frame (reported: track survival)
@@ -41,25 +49,52 @@ TEST(TrackerOnSimulator, StaticSequenceTracksAtAnalyticProjections) {
       }
       if (f.track_length == 1) {
         const sim::SceneHit hit = sim.castPixel(t, f.pixel.x(), f.pixel.y());
-        ASSERT_NE(hit.label, sim::kMaskCharacter);
+        EXPECT_NE(hit.label, sim::kMaskCharacter);
         landmark[f.id] = hit.point;
         continue;
       }
       const auto expected = sim.project(t, landmark.at(f.id));
-      ASSERT_TRUE(expected);
-      errors.push_back((f.pixel - *expected).norm());
+      EXPECT_TRUE(expected);
+      if (expected) errors.push_back((f.pixel - *expected).norm());
     }
   }
-  ASSERT_GT(errors.size(), 5000u);
-  const double median = percentile(errors, 0.5), p95 = percentile(errors, 0.95);
+  EXPECT_GT(errors.size(), 5000u);
+  if (errors.empty()) return {0, 0, 0, 0};
+  return {percentile(errors, 0.5), percentile(errors, 0.95),
+          static_cast<double>(births) / observations, errors.size()};
+}
+
+TEST(TrackerOnSimulator, StaticSequenceTracksAtAnalyticProjections) {
+  const TrackingAccuracy a = staticSequenceAccuracy(TrackerOptions{});
   std::printf(
       "static 5 s: %zu tracked positions, error median %.3f px, p95 %.3f px, %.1f%% new "
       "features per frame\n",
-      errors.size(), median, p95, 100.0 * births / observations);
+      a.positions, a.median_px, a.p95_px, 100.0 * a.births);
   // Issue 5: median < 0.15 px, p95 < 0.5 px (measured 0.04 and 0.14 px with the birth patches
   // warped by their plane's homographies; 0.21 and 2.3 px with a translational re-alignment).
-  EXPECT_LT(median, 0.15);
-  EXPECT_LT(p95, 0.5);
+  EXPECT_LT(a.median_px, 0.15);
+  EXPECT_LT(a.p95_px, 0.5);
+}
+
+TEST(TrackerOnSimulator, WithoutMasksTheNeighboursWarpKeepsTracksAlive) {
+  TrackerOptions options;
+  options.use_masks = false;
+  const TrackingAccuracy warped = staticSequenceAccuracy(options);
+  options.local_warps = false;
+  const TrackingAccuracy unwarped = staticSequenceAccuracy(options);
+  std::printf(
+      "static 5 s, no masks: local warps median %.3f px, p95 %.3f px, %.1f%% new per frame; "
+      "without %.3f px, %.3f px, %.1f%%\n",
+      warped.median_px, warped.p95_px, 100 * warped.births, unwarped.median_px, unwarped.p95_px,
+      100 * unwarped.births);
+  // Measured: 0.073 / 0.56 px and 5.3 % new per frame with the neighbours' warp, 0.135 / 0.75 px
+  // and 9.6 % without (masks: 0.044 / 0.16 px, 4.5 %; the tail is features at depth edges,
+  // whose neighbours lie on another surface). Issue 5's median bar holds; both the error and the
+  // track endings fall.
+  EXPECT_LT(warped.median_px, 0.15);
+  EXPECT_LT(warped.median_px, unwarped.median_px);
+  EXPECT_LT(warped.p95_px, unwarped.p95_px);
+  EXPECT_LT(warped.births, 0.7 * unwarped.births);
 }
 
 /// Fraction of (feature, frame) pairs whose tracked pixel lies on a character.

@@ -348,6 +348,27 @@ TEST(PlanesMap, CoplanarButFarApartStaySeparateAndDuplicatesMerge) {
   EXPECT_EQ(map.planes().size(), 1u);
 }
 
+TEST(PlaneMapExporters, DiscoveredPlanesSaySoAndParseBack) {
+  Plane mask, discovered;
+  mask.id = 1;
+  mask.mask_ids = {4};
+  discovered.id = 2;
+  discovered.mask_ids = {kFirstDiscoveredLabel, kFirstDiscoveredLabel + 3};
+  EXPECT_FALSE(mask.discovered());
+  EXPECT_TRUE(discovered.discovered());
+  test::TempDir dir;
+  writePlanesYaml(dir.file("planes.yaml"), {mask, discovered});
+  std::ifstream in(dir.file("planes.yaml"));
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text.find("source: discovery"), text.rfind("source: discovery"));  // once
+  EXPECT_GT(text.find("source: discovery"), text.find("id: 2"));               // on plane 2
+  const auto back = readPlanesYaml(dir.file("planes.yaml"));
+  ASSERT_EQ(back.size(), 2u);
+  EXPECT_FALSE(back[0].discovered());
+  EXPECT_TRUE(back[1].discovered());
+  EXPECT_EQ(back[1].mask_ids, discovered.mask_ids);
+}
+
 TEST(PlaneMapExporters, FilesParseBackAndLoad) {
   size_t distinct = 0;
   const PlanesMap map = twoLaps(&distinct);

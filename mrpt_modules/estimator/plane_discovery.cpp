@@ -1,0 +1,314 @@
+#include "mrpt_modules/estimator/plane_discovery.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <random>
+#include <set>
+
+namespace rpvio {
+namespace {
+
+// Labels of ended tracks are kept this long (s): longer than an initialization window.
+constexpr double kLabelMemoryS = 5;
+
+/// Normalized-plane transfer error of a pair under y ~ x + t (mᵀ x).
+double transferError(const BearingPair& p, const Eigen::Vector3d& t, const Eigen::Vector3d& m) {
+  const Eigen::Vector3d mapped = p.rotated_j + t * m.dot(p.rotated_j);
+  if (mapped.z() <= 1e-9) return INFINITY;
+  return (mapped.hnormalized() - p.k.hnormalized()).norm();
+}
+
+/// The camera's translation direction by MSAC over two-point hypotheses, and its inliers.
+std::optional<Eigen::Vector3d> translationConsensus(const std::vector<BearingPair>& pairs,
+                                                    double limit, int iterations,
+                                                    std::mt19937& random) {
+  std::vector<Eigen::Vector3d> constraints;  // x × y, unit; t is orthogonal to all static ones
+  std::vector<size_t> usable;
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    const Eigen::Vector3d c = pairs[i].rotated_j.cross(pairs[i].k);
+    constraints.push_back(c.norm() > 1e-12 ? Eigen::Vector3d(c.normalized()) : c);
+    if (c.norm() > 1e-12) usable.push_back(i);
+  }
+  if (usable.size() < 2) return std::nullopt;
+  std::uniform_int_distribution<size_t> pick(0, usable.size() - 1);
+  const auto cost = [&](const Eigen::Vector3d& t) {
+    double sum = 0;
+    for (const BearingPair& p : pairs) sum += std::min(std::pow(epipolarDistance(p, t), 2), limit * limit);
+    return sum;
+  };
+  double best_cost = INFINITY;
+  Eigen::Vector3d best = Eigen::Vector3d::Zero();
+  for (int it = 0; it < iterations; ++it) {
+    const size_t a = usable[pick(random)], b = usable[pick(random)];
+    const Eigen::Vector3d t = constraints[a].cross(constraints[b]);
+    if (t.norm() < 1e-6) continue;
+    const double c = cost(t.normalized());
+    if (c < best_cost) {
+      best_cost = c;
+      best = t.normalized();
+    }
+  }
+  if (best_cost == INFINITY) return std::nullopt;
+  std::vector<BearingPair> inliers;
+  for (const BearingPair& p : pairs)
+    if (epipolarDistance(p, best) < limit) inliers.push_back(p);
+  if (inliers.size() < 2) return std::nullopt;
+  const Eigen::Vector3d refined = translationDirection(inliers);
+  return cost(refined) <= best_cost ? refined : best;
+}
+
+/// Signed distance of y from the epipolar line of t through x (normalized image plane).
+double signedEpipolarDistance(const Eigen::Vector3d& x, const Eigen::Vector3d& y,
+                              const Eigen::Vector3d& t) {
+  const Eigen::Vector3d line = t.cross(x);
+  const double norm = line.head<2>().norm();
+  return norm > 1e-12 ? line.dot(y / y.z()) / norm : 0;
+}
+
+/// The gyroscope's rotation corrected by a small rotation δ and the translation direction, by
+/// Gauss–Newton on the epipolar distances of the static pairs (numeric Jacobian over δ and the
+/// two directions orthogonal to t): an uncorrected gyroscope bias of 0.005 rad/s turns 0.3 s
+/// apart frames by 0.7 px, as much as the thresholds. Returns Exp(δ); updates t.
+Eigen::Matrix3d refineRotation(const std::vector<BearingPair>& pairs,
+                               const std::vector<size_t>& inliers, Eigen::Vector3d& t) {
+  Eigen::Matrix3d correction = Eigen::Matrix3d::Identity();
+  if (inliers.size() < 8) return correction;
+  const auto residuals = [&](const Eigen::Matrix3d& R, const Eigen::Vector3d& dir) {
+    Eigen::VectorXd r(inliers.size());
+    for (size_t i = 0; i < inliers.size(); ++i)
+      r(i) = signedEpipolarDistance(R * pairs[inliers[i]].rotated_j, pairs[inliers[i]].k, dir);
+    return r;
+  };
+  const auto step = [&](const Eigen::Matrix<double, 5, 1>& d, Eigen::Matrix3d& R,
+                        Eigen::Vector3d& dir) {
+    Eigen::Vector3d u = dir.unitOrthogonal(), v = dir.cross(u);
+    R = Eigen::AngleAxisd(d.head<3>().norm(), d.head<3>().norm() > 0
+                                                  ? Eigen::Vector3d(d.head<3>().normalized())
+                                                  : Eigen::Vector3d::UnitX())
+            .toRotationMatrix() *
+        R;
+    dir = (dir + d(3) * u + d(4) * v).normalized();
+  };
+  for (int iteration = 0; iteration < 5; ++iteration) {
+    const Eigen::VectorXd r0 = residuals(correction, t);
+    Eigen::MatrixXd J(r0.size(), 5);
+    const double h = 1e-6;
+    for (int c = 0; c < 5; ++c) {
+      Eigen::Matrix<double, 5, 1> d = Eigen::Matrix<double, 5, 1>::Zero();
+      d(c) = h;
+      Eigen::Matrix3d R = correction;
+      Eigen::Vector3d dir = t;
+      step(d, R, dir);
+      J.col(c) = (residuals(R, dir) - r0) / h;
+    }
+    const Eigen::Matrix<double, 5, 1> delta = (J.transpose() * J).ldlt().solve(-J.transpose() * r0);
+    if (!delta.allFinite()) break;
+    Eigen::Matrix3d R = correction;
+    Eigen::Vector3d dir = t;
+    step(delta, R, dir);
+    if (residuals(R, dir).squaredNorm() >= r0.squaredNorm()) break;
+    correction = R;
+    t = dir;
+  }
+  return correction;
+}
+
+}  // namespace
+
+/// Least-squares m of (y × t)(xᵀ m) = −(y × x) over the pairs (three rows each).
+std::optional<Eigen::Vector3d> planeThroughPairs(const std::vector<BearingPair>& pairs,
+                                        const std::vector<size_t>& members,
+                                        const Eigen::Vector3d& t) {
+  Eigen::MatrixX3d A(3 * members.size(), 3);
+  Eigen::VectorXd b(3 * members.size());
+  for (size_t r = 0; r < members.size(); ++r) {
+    const BearingPair& p = pairs[members[r]];
+    const Eigen::Vector3d y = p.k / p.k.z();
+    A.middleRows<3>(3 * r) = y.cross(t) * p.rotated_j.transpose();
+    b.segment<3>(3 * r) = -y.cross(p.rotated_j);
+  }
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixX3d> qr(A);
+  if (qr.rank() < 3) return std::nullopt;
+  return qr.solve(b);
+}
+
+PlaneDiscovery::CheckResult PlaneDiscovery::check(const FeatureFrame& j, const FeatureFrame& k,
+                                                  const Eigen::Matrix3d& R_kj) const {
+  CheckResult result;
+  std::vector<int> ids;
+  std::vector<BearingPair> pairs = bearingPairs(j, k, R_kj, &ids);
+  if (pairs.size() < options_.min_features) return result;
+  std::vector<double> flow;
+  for (const BearingPair& p : pairs) flow.push_back(parallax(p));
+  if (median(flow) * options_.focal_px < options_.min_parallax_px) return result;
+
+  std::mt19937 random(1);  // the same samples for the same frames: runs repeat exactly
+  const double epipolar_limit = options_.epipolar_px / options_.focal_px;
+  auto t = translationConsensus(pairs, epipolar_limit, options_.iterations, random);
+  if (!t) return result;
+  {
+    std::vector<size_t> consensus;
+    for (size_t i = 0; i < pairs.size(); ++i)
+      if (epipolarDistance(pairs[i], *t) < epipolar_limit) consensus.push_back(i);
+    const Eigen::Matrix3d correction = refineRotation(pairs, consensus, *t);
+    for (BearingPair& p : pairs) p.rotated_j = correction * p.rotated_j;
+  }
+  std::vector<size_t> still;  // static, not yet on a plane
+  for (size_t i = 0; i < pairs.size(); ++i)
+    (epipolarDistance(pairs[i], *t) < epipolar_limit ? still.push_back(i)
+                                                     : result.moving.push_back(ids[i]));
+  if (2 * still.size() <= pairs.size()) return result;  // no consensus: nothing judged
+  // Points in front: the inverse depths ρ = mᵀx, from (y × t) ρ = −(y × x), mostly positive.
+  std::vector<double> inverse_depths;
+  for (size_t i : still) {
+    const Eigen::Vector3d y = pairs[i].k, yt = y.cross(*t);
+    if (yt.squaredNorm() > 1e-18)
+      inverse_depths.push_back(-yt.dot(y.cross(pairs[i].rotated_j)) / yt.squaredNorm());
+  }
+  result.t = inverse_depths.empty() || median(inverse_depths) >= 0 ? *t : Eigen::Vector3d(-*t);
+  result.judged = true;
+
+  const double plane_limit = options_.plane_px / options_.focal_px;
+  const auto members = [&](const Eigen::Vector3d& m) {
+    std::vector<size_t> in;
+    for (size_t i : still)
+      if (transferError(pairs[i], result.t, m) < plane_limit) in.push_back(i);
+    return in;
+  };
+  while (static_cast<int>(result.planes.size()) < options_.max_planes &&
+         still.size() >= options_.min_features) {
+    std::uniform_int_distribution<size_t> pick(0, still.size() - 1);
+    std::vector<size_t> best;
+    for (int it = 0; it < options_.iterations; ++it) {
+      // A feature and two of its nearest image neighbours.
+      const size_t seed = still[pick(random)];
+      std::vector<std::pair<double, size_t>> near;
+      for (size_t i : still)
+        if (i != seed)
+          near.push_back({(pairs[i].k.hnormalized() - pairs[seed].k.hnormalized()).squaredNorm(), i});
+      const size_t n = std::min<size_t>(near.size(), options_.sample_neighbours);
+      if (n < 2) break;
+      std::partial_sort(near.begin(), near.begin() + n, near.end());
+      std::uniform_int_distribution<size_t> neighbour(0, n - 1);
+      const size_t a = neighbour(random);
+      size_t b = neighbour(random);
+      if (b == a) b = (a + 1) % n;
+      const auto m = planeThroughPairs(pairs, {seed, near[a].second, near[b].second}, result.t);
+      if (!m) continue;
+      std::vector<size_t> in = members(*m);
+      if (in.size() > best.size()) best.swap(in);
+    }
+    if (best.size() < options_.min_features) break;
+    // Least squares over the consensus, twice (its members may change once).
+    Eigen::Vector3d m = Eigen::Vector3d::Zero();
+    for (int round = 0; round < 2; ++round) {
+      const auto refined = planeThroughPairs(pairs, best, result.t);
+      if (!refined) break;
+      m = *refined;
+      std::vector<size_t> in = members(m);
+      if (in.size() < options_.min_features) break;
+      best.swap(in);
+    }
+    if (best.size() < options_.min_features) break;
+    FoundPlane plane{m, {}};
+    for (size_t i : best) plane.features.push_back(ids[i]);
+    result.planes.push_back(plane);
+    std::vector<size_t> rest;
+    std::set_difference(still.begin(), still.end(), best.begin(), best.end(),
+                        std::back_inserter(rest));
+    still.swap(rest);
+  }
+  return result;
+}
+
+void PlaneDiscovery::update(const CheckResult& result, const FeatureFrame& frame) {
+  // Every labelled feature still tracked was compared (it was tracked at the reference frame of
+  // the check that labelled it, which is no newer than this one's). Segments whose compared
+  // features mostly moved count a disagreement.
+  const std::set<int> moving(result.moving.begin(), result.moving.end());
+  std::map<int, std::pair<int, int>> moving_of;  // segment → (moving, compared)
+  for (const TrackedFeature& f : frame.features)
+    if (const auto it = labels_.find(f.id); it != labels_.end()) {
+      it->second.static_in_last_check = !moving.count(f.id);
+      auto& [moved, compared] = moving_of[it->second.segment];
+      moved += moving.count(f.id) ? 1 : 0;
+      ++compared;
+    }
+  for (const auto& [segment, counts] : moving_of) {
+    Segment& s = segments_[segment];
+    const auto [moved, compared] = counts;
+    if (s.rejected || 2 * compared < static_cast<int>(options_.min_features)) continue;
+    s.moving_streak = 2 * moved > compared ? s.moving_streak + 1 : 0;
+    if (s.moving_streak < options_.reject_after) continue;
+    s.rejected = true;
+    if (s.confirmed) events_.push_back({frame.t, segment, false});
+  }
+  // Match each found plane to the segment most of its labelled features carry.
+  std::set<int> matched;
+  for (const FoundPlane& plane : result.planes) {
+    std::map<int, int> votes;
+    for (const int id : plane.features)
+      if (const auto it = labels_.find(id); it != labels_.end() && !segments_[it->second.segment].rejected)
+        ++votes[it->second.segment];
+    int segment = 0, most = 0;
+    for (const auto& [s, n] : votes)
+      if (n > most && !matched.count(s)) {
+        segment = s;
+        most = n;
+      }
+    if (3 * most < static_cast<int>(plane.features.size())) segment = next_id_++;
+    matched.insert(segment);
+    Segment& s = segments_[segment];
+    if (++s.found >= options_.confirm_after && !s.confirmed) {
+      s.confirmed = true;
+      events_.push_back({frame.t, segment, true});
+    }
+    for (const int id : plane.features) labels_[id] = {segment, true, frame.t};
+  }
+  // Features of a found segment that no longer fit it, and those of rejected segments, lose
+  // their label.
+  std::set<int> on_found;
+  for (const FoundPlane& plane : result.planes) on_found.insert(plane.features.begin(), plane.features.end());
+  for (auto it = labels_.begin(); it != labels_.end();) {
+    const int segment = it->second.segment;
+    const bool lost = segments_[segment].rejected ||
+                      (matched.count(segment) && !on_found.count(it->first) && !moving.count(it->first));
+    it = lost ? labels_.erase(it) : std::next(it);
+  }
+}
+
+FeatureFrame PlaneDiscovery::label(const FeatureFrame& frame,
+                                   const std::optional<Eigen::Quaterniond>& R_previous_current) {
+  if (!options_.enabled) return FeatureFrame{frame.t, {}};
+  history_.push(frame, R_previous_current);
+  if (const auto* reference = history_.reference(options_.span_s)) {
+    const CheckResult result = check(reference->frame, frame, history_.rotationFrom(*reference));
+    if (result.judged) update(result, frame);
+  }
+  history_.trim(options_.span_s);
+  // Labels are kept for frames the initializer may still look at.
+  for (const TrackedFeature& f : frame.features)
+    if (const auto it = labels_.find(f.id); it != labels_.end()) it->second.last_seen_t = frame.t;
+  for (auto it = labels_.begin(); it != labels_.end();)
+    it = frame.t - it->second.last_seen_t > kLabelMemoryS ? labels_.erase(it) : std::next(it);
+  return labelled(frame);
+}
+
+FeatureFrame PlaneDiscovery::labelled(const FeatureFrame& frame) const {
+  FeatureFrame out;
+  out.t = frame.t;
+  for (const TrackedFeature& f : frame.features) {
+    const auto it = labels_.find(f.id);
+    if (it == labels_.end() || !it->second.static_in_last_check) continue;
+    const Segment& s = segments_.at(it->second.segment);
+    if (!s.confirmed || s.rejected) continue;
+    TrackedFeature on_plane = f;
+    on_plane.plane_id = it->second.segment;
+    out.features.push_back(on_plane);
+  }
+  return out;
+}
+
+}  // namespace rpvio

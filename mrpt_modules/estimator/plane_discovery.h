@@ -1,0 +1,110 @@
+#pragma once
+// Plane discovery without masks (mode rpvio-auto, issue #34): groups the features tracked over the
+// whole image into static planes, which the estimator then uses as it uses mask planes.
+//
+// Each frame k is compared with the newest frame j at least span_s older, the rotation R_kj known
+// from the gyroscope (x = R_kj b_j, y = b_k; bearings with z = 1):
+//  1. The camera's translation direction t: every static point satisfies tᵀ (x × y) = 0, so two
+//     points give t = (x₁ × y₁) × (x₂ × y₂). MSAC over such pairs (epipolar distance truncated at
+//     epipolar_px), refined over its inliers together with a small correction of the gyroscope's
+//     rotation (its bias is unknown before initialization); features farther than epipolar_px
+//     from their epipolar line move against the camera (people, vehicles) and are set aside.
+//  2. Planes among the static features: a point of the plane n·X_j = d satisfies
+//     y ~ x + t (mᵀ x) with m = |T| R_kj n / d (the homography H = R + T nᵀ/d with R and the
+//     direction of T known), i.e. (y × t)(xᵀ m) = −(y × x): linear in m, three points determine
+//     it. Sequential RANSAC (samples drawn among a point's image neighbours, a plane being a
+//     region) takes the largest plane within plane_px transfer error, refines m by least squares,
+//     removes its features and repeats.
+//  3. Planes found in a check are matched to the segments of earlier checks by their features'
+//     labels (a majority of the plane's labelled features), else start a new segment. A segment
+//     becomes a static plane once found in confirm_after checks; it is rejected as moving once
+//     most of its features were off their epipolar lines in reject_after consecutive checks.
+// Discovered planes get labels from kFirstDiscoveredLabel on (mask labels are 8-bit): the map
+// tells their origin.
+#include <Eigen/Geometry>
+#include <map>
+#include <optional>
+#include <unordered_map>
+#include <vector>
+
+#include "mrpt_modules/core/feature_frame.h"
+#include "mrpt_modules/estimator/estimator_types.h"
+#include "mrpt_modules/estimator/two_view_bearings.h"
+#include "planes_map/plane.h"
+
+namespace rpvio {
+
+struct PlaneDiscoveryOptions {
+  bool enabled = false;
+  double span_s = 0.3;           // frames this far apart are compared
+  double min_parallax_px = 4;    // rotation-compensated, median over the compared features
+  double epipolar_px = 0.5;      // farther from its epipolar line: the feature moves
+  double plane_px = 0.5;         // transfer error within which a feature lies on a plane
+  size_t min_features = 10;      // per plane and check
+  int max_planes = 4;            // found per check
+  int confirm_after = 3;         // checks finding a segment before it is a static plane
+  int reject_after = 3;          // consecutive checks with most of its features moving
+  int iterations = 200;          // RANSAC samples per model
+  int sample_neighbours = 12;    // a plane's samples: a feature and two of its nearest neighbours
+  double focal_px = 460;         // pixel scale of the thresholds
+};
+
+/// The plane m of y ~ x + t (mᵀ x) through the given pairs, by least squares over
+/// (y × t)(xᵀ m) = −(y × x) (three rows each; three pairs determine it); none when degenerate.
+std::optional<Eigen::Vector3d> planeThroughPairs(const std::vector<BearingPair>& pairs,
+                                                 const std::vector<size_t>& members,
+                                                 const Eigen::Vector3d& t);
+
+class PlaneDiscovery {
+ public:
+  explicit PlaneDiscovery(const PlaneDiscoveryOptions& options) : options_(options) {}
+
+  /// The features of the frame on static discovered planes, labelled with their plane ids
+  /// (others are dropped). `R_previous_current`: the camera's rotation from the previous frame
+  /// given here to this one (camera k in camera k-1), from the gyroscope; none (no IMU between
+  /// them): the comparisons start again from this frame.
+  FeatureFrame label(const FeatureFrame& frame,
+                     const std::optional<Eigen::Quaterniond>& R_previous_current);
+
+  /// A frame given earlier with the labels known now (features not on a static plane dropped).
+  FeatureFrame labelled(const FeatureFrame& frame) const;
+
+  struct FoundPlane {
+    Eigen::Vector3d m;          // y ~ x + t (mᵀ x)
+    std::vector<int> features;  // ids
+  };
+  struct CheckResult {
+    bool judged = false;  // enough parallax and a translation consensus
+    Eigen::Vector3d t = Eigen::Vector3d::Zero();  // unit; points in front have mᵀx > 0
+    std::vector<int> moving;                      // ids off their epipolar lines
+    std::vector<FoundPlane> planes;               // largest first
+  };
+  /// One comparison of frame k with frame j (R_kj: bearings of j turned into k's orientation).
+  CheckResult check(const FeatureFrame& j, const FeatureFrame& k,
+                    const Eigen::Matrix3d& R_kj) const;
+
+  const std::vector<PlaneDiscoveryEvent>& events() const { return events_; }
+  size_t segmentsFound() const { return segments_.size(); }
+
+ private:
+  struct Segment {
+    int found = 0;          // checks that found it
+    int moving_streak = 0;  // consecutive checks with most of its features moving
+    bool confirmed = false, rejected = false;
+  };
+  struct Label {
+    int segment = 0;
+    bool static_in_last_check = true;
+    double last_seen_t = 0;
+  };
+  void update(const CheckResult& result, const FeatureFrame& frame);
+
+  PlaneDiscoveryOptions options_;
+  RotatedFrameHistory history_;
+  std::map<int, Segment> segments_;
+  std::unordered_map<int, Label> labels_;  // feature id → its segment
+  int next_id_ = kFirstDiscoveredLabel;
+  std::vector<PlaneDiscoveryEvent> events_;
+};
+
+}  // namespace rpvio

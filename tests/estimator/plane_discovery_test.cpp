@@ -1,0 +1,196 @@
+// PlaneDiscovery on exact geometry with tracker-like noise: the 3-point known-rotation plane
+// solver against exact data; one check separating a wall and a floor (static) from a panel
+// driving towards the camera; over a run, a parked panel accepted as a static plane and rejected
+// once it starts moving; nothing labelled while the camera only turns.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <random>
+#include <set>
+
+#include "mrpt_modules/estimator/plane_discovery.h"
+#include "tests/estimator/wall_floor_panel_scene.h"
+
+namespace rpvio {
+namespace {
+
+using namespace test;  // the scene
+constexpr double kRate = 20;  // Hz
+
+/// A slower turn than the verifier's (2 s in view) and a panel at 4.25 m, where no floor point
+/// is (points on both planes could go either way), with more points.
+WallFloorPanel scene() {
+  WallFloorPanel s;
+  s.yaw_rate = 0.2;
+  s.panel_z = 4.25;
+  s.panel_step_x = s.panel_step_y = 0.2;
+  return s;
+}
+
+/// The frame at time t (ids = scene point ids, no plane labels); the panel moves with
+/// `panel_velocity` (world, m/s) from `panel_starts` on.
+FeatureFrame frameAt(double t, const Eigen::Vector3d& panel_velocity, double panel_starts,
+                     double noise_px, std::mt19937& rng) {
+  std::normal_distribution<double> noise(0, noise_px / 460);
+  FeatureFrame frame;
+  frame.t = t;
+  for (const ScenePoint& p : scene().points()) {
+    Eigen::Vector3d X = p.at_t0;
+    if (p.plane == kPanel && t > panel_starts) X += panel_velocity * (t - panel_starts);
+    const auto u = scene().project(t, X);
+    if (!u) continue;
+    TrackedFeature f;
+    f.id = p.id;
+    f.normalized = *u + Eigen::Vector2d(noise(rng), noise(rng));
+    frame.features.push_back(f);
+  }
+  return frame;
+}
+
+int planeOf(int id) {
+  for (const ScenePoint& p : scene().points())
+    if (p.id == id) return p.plane;
+  return 0;
+}
+
+TEST(PlaneThroughPairs, ThreeExactPointsGiveThePlanesInverseDepthMap) {
+  // Camera j at the origin; k = R_kj X_j + T. Plane n·X_j = d.
+  const Eigen::Matrix3d R_kj =
+      Eigen::AngleAxisd(0.3, Eigen::Vector3d(0.2, 1, -0.4).normalized()).toRotationMatrix();
+  const Eigen::Vector3d T(0.4, -0.1, 0.25), n = Eigen::Vector3d(0.1, -0.9, -0.3).normalized();
+  const double d = -1.7;
+  std::vector<BearingPair> pairs;
+  for (const Eigen::Vector2d& u :
+       {Eigen::Vector2d(0.1, 0.4), Eigen::Vector2d(-0.3, 0.2), Eigen::Vector2d(0.25, -0.1),
+        Eigen::Vector2d(-0.2, -0.3), Eigen::Vector2d(0.05, 0.05)}) {
+    const Eigen::Vector3d b = u.homogeneous(), X_j = b * d / n.dot(b);
+    pairs.push_back({R_kj * b, (R_kj * X_j + T).hnormalized().homogeneous()});
+  }
+  const Eigen::Vector3d t = T.normalized();
+  const Eigen::Vector3d expected = T.norm() * R_kj * n / d;  // H = R + T nᵀ/d, in k's orientation
+  const auto three = planeThroughPairs(pairs, {0, 1, 2}, t);
+  ASSERT_TRUE(three.has_value());
+  EXPECT_LT((*three - expected).norm(), 1e-9 * expected.norm());
+  const auto all = planeThroughPairs(pairs, {0, 1, 2, 3, 4}, t);
+  ASSERT_TRUE(all.has_value());
+  EXPECT_LT((*all - expected).norm(), 1e-9 * expected.norm());
+  // Two pairs leave m undetermined along one direction.
+  EXPECT_FALSE(planeThroughPairs(pairs, {0, 1}, t).has_value());
+}
+
+TEST(PlaneDiscovery, OneCheckFindsTheWallAndTheFloorAndSetsTheDrivingPanelAside) {
+  std::mt19937 rng(5);
+  const Eigen::Vector3d towards_camera(0, 0, -1.0);
+  const FeatureFrame j = frameAt(0.0, towards_camera, 0, 0.1, rng);
+  const FeatureFrame k = frameAt(0.3, towards_camera, 0, 0.1, rng);
+  const Eigen::Matrix3d R_kj = scene().cameraRotation(0.3).transpose() * scene().cameraRotation(0.0);
+  PlaneDiscoveryOptions options;
+  const PlaneDiscovery discovery(options);
+  const PlaneDiscovery::CheckResult result = discovery.check(j, k, R_kj);
+  ASSERT_TRUE(result.judged);
+  const Eigen::Vector3d T_kj = scene().cameraRotation(0.3).transpose() * (scene().cameraPosition(0) - scene().cameraPosition(0.3));
+  EXPECT_GT(result.t.dot(T_kj.normalized()), std::cos(1.0 * M_PI / 180));  // within 1°, sign too
+  // Most panel points are set aside (those whose extra motion runs along their epipolar line
+  // cannot be: the limit of any two-view test); no wall or floor point is.
+  std::map<int, int> moving_by_plane, seen_by_plane;
+  for (const int id : result.moving) ++moving_by_plane[planeOf(id)];
+  for (const TrackedFeature& f : k.features) ++seen_by_plane[planeOf(f.id)];
+  EXPECT_GE(moving_by_plane[kPanel], 0.75 * seen_by_plane[kPanel]);
+  EXPECT_EQ(moving_by_plane[kWall] + moving_by_plane[kFloor], 0);
+  // Two planes, each at least 90 % one scene plane and holding at least 90 % of its points.
+  ASSERT_EQ(result.planes.size(), 2u);
+  std::set<int> found;
+  for (const auto& plane : result.planes) {
+    std::map<int, int> members;
+    for (const int id : plane.features) ++members[planeOf(id)];
+    const auto [scene_plane, count] = *std::max_element(
+        members.begin(), members.end(), [](auto& a, auto& b) { return a.second < b.second; });
+    EXPECT_GE(count, 0.9 * plane.features.size());
+    EXPECT_GE(count, 0.9 * seen_by_plane[scene_plane]);
+    found.insert(scene_plane);
+  }
+  EXPECT_EQ(found, (std::set<int>{kWall, kFloor}));
+}
+
+/// 2 s at 20 Hz; the panel is parked until `panel_starts` then drives towards the camera.
+struct DiscoveryRun {
+  PlaneDiscovery discovery{PlaneDiscoveryOptions{}};
+  std::vector<FeatureFrame> outputs;
+};
+DiscoveryRun run(double panel_starts, double duration = 2.0, bool translate = true) {
+  DiscoveryRun r;
+  PlaneDiscoveryOptions options;
+  options.enabled = true;
+  r.discovery = PlaneDiscovery(options);
+  std::mt19937 rng(7);
+  for (int k = 0; k <= duration * kRate; ++k) {
+    const double t = k / kRate;
+    FeatureFrame frame = frameAt(translate ? t : 0, Eigen::Vector3d(0, 0, -1.0), panel_starts, 0.1, rng);
+    frame.t = t;
+    if (!translate) {  // the same position, turning only
+      for (TrackedFeature& f : frame.features)
+        f.normalized = (scene().cameraRotation(t).transpose() * scene().cameraRotation(0) *
+                        f.normalized.homogeneous())
+                           .hnormalized();
+    }
+    const Eigen::Quaterniond R_previous_current(
+        scene().cameraRotation(std::max(0.0, t - 1 / kRate)).transpose() * scene().cameraRotation(t));
+    r.outputs.push_back(r.discovery.label(frame, R_previous_current));
+  }
+  return r;
+}
+
+TEST(PlaneDiscovery, AParkedPanelIsAcceptedAndRejectedOnceItDrivesOff) {
+  const DiscoveryRun r = run(/*panel_starts=*/1.0);
+  std::map<int, int> accepted_as;  // scene plane → segment
+  double panel_rejected_at = -1;
+  for (const PlaneDiscoveryEvent& e : r.discovery.events()) {
+    EXPECT_GE(e.plane_id, kFirstDiscoveredLabel);
+    if (!e.accepted) {
+      EXPECT_LT(panel_rejected_at, 0) << "one rejection";
+      panel_rejected_at = e.t;
+      continue;
+    }
+    // The scene plane of the segment: from the first output holding it.
+    for (const FeatureFrame& f : r.outputs)
+      for (const TrackedFeature& x : f.features)
+        if (x.plane_id == e.plane_id && !accepted_as.count(planeOf(x.id)))
+          accepted_as[planeOf(x.id)] = e.plane_id;
+  }
+  // All three accepted once found in three checks (the first at 0.3 s): by 0.45 s.
+  ASSERT_EQ(accepted_as.size(), 3u);
+  for (const PlaneDiscoveryEvent& e : r.discovery.events())
+    EXPECT_TRUE(!e.accepted || e.t <= 0.45 + 1e-9) << "accepted at " << e.t;
+  // Rejected after three checks with it moving: within 0.3 s of driving off.
+  ASSERT_GT(panel_rejected_at, 1.0);
+  EXPECT_LE(panel_rejected_at, 1.3 + 1e-9);
+  for (const FeatureFrame& f : r.outputs) {
+    for (const TrackedFeature& x : f.features) {
+      // A label stands for one scene plane; after the rejection no panel point is output.
+      const auto it = accepted_as.find(planeOf(x.id));
+      ASSERT_NE(it, accepted_as.end());
+      EXPECT_EQ(x.plane_id, it->second);
+      if (f.t >= panel_rejected_at) {
+        EXPECT_NE(planeOf(x.id), kPanel);
+      }
+    }
+    if (f.t < 0.4 - 1e-9) {
+      EXPECT_TRUE(f.features.empty()) << "output before confirmation";
+    }
+  }
+  // The wall and floor stay: the last frame still holds both.
+  std::set<int> last;
+  for (const TrackedFeature& x : r.outputs.back().features) last.insert(planeOf(x.id));
+  EXPECT_EQ(last, (std::set<int>{kWall, kFloor}));
+}
+
+TEST(PlaneDiscovery, NothingIsLabelledWhileTheCameraOnlyTurns) {
+  const DiscoveryRun r = run(/*panel_starts=*/10, 1.0, /*translate=*/false);
+  EXPECT_TRUE(r.discovery.events().empty());
+  for (const FeatureFrame& f : r.outputs) EXPECT_TRUE(f.features.empty());
+}
+
+}  // namespace
+}  // namespace rpvio
