@@ -35,7 +35,8 @@ std::optional<Eigen::Vector3d> translationConsensus(const std::vector<BearingPai
   std::uniform_int_distribution<size_t> pick(0, usable.size() - 1);
   const auto cost = [&](const Eigen::Vector3d& t) {
     double sum = 0;
-    for (const BearingPair& p : pairs) sum += std::min(std::pow(epipolarDistance(p, t), 2), limit * limit);
+    for (const BearingPair& p : pairs)
+      sum += std::min(std::pow(epipolarDistance(p, t), 2), limit * limit);
     return sum;
   };
   double best_cost = INFINITY;
@@ -119,8 +120,8 @@ Eigen::Matrix3d refineRotation(const std::vector<BearingPair>& pairs,
 
 /// Least-squares m of (y × t)(xᵀ m) = −(y × x) over the pairs (three rows each).
 std::optional<Eigen::Vector3d> planeThroughPairs(const std::vector<BearingPair>& pairs,
-                                        const std::vector<size_t>& members,
-                                        const Eigen::Vector3d& t) {
+                                                 const std::vector<size_t>& members,
+                                                 const Eigen::Vector3d& t) {
   Eigen::MatrixX3d A(3 * members.size(), 3);
   Eigen::VectorXd b(3 * members.size());
   for (size_t r = 0; r < members.size(); ++r) {
@@ -140,9 +141,18 @@ PlaneDiscovery::CheckResult PlaneDiscovery::check(const FeatureFrame& j, const F
   std::vector<int> ids;
   std::vector<BearingPair> pairs = bearingPairs(j, k, R_kj, &ids);
   if (pairs.size() < options_.min_features) return result;
-  std::vector<double> flow;
-  for (const BearingPair& p : pairs) flow.push_back(parallax(p));
-  if (median(flow) * options_.focal_px < options_.min_parallax_px) return result;
+  // Rotation-compensated parallax, or the raw image motion when smaller: a still camera with a
+  // biased gyroscope (EuRoC's: 0.08 rad/s, 11 px in 0.3 s) must not look like it translates.
+  std::vector<double> raw_flow;
+  for (const BearingPair& p : pairs)
+    raw_flow.push_back(((R_kj.transpose() * p.rotated_j).hnormalized() - p.k.hnormalized()).norm());
+  const double raw_parallax = median(raw_flow);
+  const auto enough_parallax = [&] {
+    std::vector<double> flow;
+    for (const BearingPair& p : pairs) flow.push_back(parallax(p));
+    return std::min(median(flow), raw_parallax) * options_.focal_px >= options_.min_parallax_px;
+  };
+  if (!enough_parallax()) return result;
 
   std::mt19937 random(1);  // the same samples for the same frames: runs repeat exactly
   const double epipolar_limit = options_.epipolar_px / options_.focal_px;
@@ -155,7 +165,8 @@ PlaneDiscovery::CheckResult PlaneDiscovery::check(const FeatureFrame& j, const F
     const Eigen::Matrix3d correction = refineRotation(pairs, consensus, *t);
     for (BearingPair& p : pairs) p.rotated_j = correction * p.rotated_j;
   }
-  std::vector<size_t> still;  // static, not yet on a plane
+  if (!enough_parallax()) return result;  // the gyroscope's error was the parallax
+  std::vector<size_t> still;              // static, not yet on a plane
   for (size_t i = 0; i < pairs.size(); ++i)
     (epipolarDistance(pairs[i], *t) < epipolar_limit ? still.push_back(i)
                                                      : result.moving.push_back(ids[i]));
@@ -187,7 +198,8 @@ PlaneDiscovery::CheckResult PlaneDiscovery::check(const FeatureFrame& j, const F
       std::vector<std::pair<double, size_t>> near;
       for (size_t i : still)
         if (i != seed)
-          near.push_back({(pairs[i].k.hnormalized() - pairs[seed].k.hnormalized()).squaredNorm(), i});
+          near.push_back(
+              {(pairs[i].k.hnormalized() - pairs[seed].k.hnormalized()).squaredNorm(), i});
       const size_t n = std::min<size_t>(near.size(), options_.sample_neighbours);
       if (n < 2) break;
       std::partial_sort(near.begin(), near.begin() + n, near.end());
@@ -250,7 +262,8 @@ void PlaneDiscovery::update(const CheckResult& result, const FeatureFrame& frame
   for (const FoundPlane& plane : result.planes) {
     std::map<int, int> votes;
     for (const int id : plane.features)
-      if (const auto it = labels_.find(id); it != labels_.end() && !segments_[it->second.segment].rejected)
+      if (const auto it = labels_.find(id);
+          it != labels_.end() && !segments_[it->second.segment].rejected)
         ++votes[it->second.segment];
     int segment = 0, most = 0;
     for (const auto& [s, n] : votes)
@@ -270,11 +283,13 @@ void PlaneDiscovery::update(const CheckResult& result, const FeatureFrame& frame
   // Features of a found segment that no longer fit it, and those of rejected segments, lose
   // their label.
   std::set<int> on_found;
-  for (const FoundPlane& plane : result.planes) on_found.insert(plane.features.begin(), plane.features.end());
+  for (const FoundPlane& plane : result.planes)
+    on_found.insert(plane.features.begin(), plane.features.end());
   for (auto it = labels_.begin(); it != labels_.end();) {
     const int segment = it->second.segment;
-    const bool lost = segments_[segment].rejected ||
-                      (matched.count(segment) && !on_found.count(it->first) && !moving.count(it->first));
+    const bool lost =
+        segments_[segment].rejected ||
+        (matched.count(segment) && !on_found.count(it->first) && !moving.count(it->first));
     it = lost ? labels_.erase(it) : std::next(it);
   }
 }

@@ -36,17 +36,17 @@ namespace rpvio {
 
 struct PlaneDiscoveryOptions {
   bool enabled = false;
-  double span_s = 0.3;           // frames this far apart are compared
-  double min_parallax_px = 4;    // rotation-compensated, median over the compared features
-  double epipolar_px = 0.5;      // farther from its epipolar line: the feature moves
-  double plane_px = 0.5;         // transfer error within which a feature lies on a plane
-  size_t min_features = 10;      // per plane and check
-  int max_planes = 4;            // found per check
-  int confirm_after = 3;         // checks finding a segment before it is a static plane
-  int reject_after = 3;          // consecutive checks with most of its features moving
-  int iterations = 200;          // RANSAC samples per model
-  int sample_neighbours = 12;    // a plane's samples: a feature and two of its nearest neighbours
-  double focal_px = 460;         // pixel scale of the thresholds
+  double span_s = 0.3;         // frames this far apart are compared
+  double min_parallax_px = 4;  // rotation-compensated, median over the compared features
+  double epipolar_px = 0.5;    // farther from its epipolar line: the feature moves
+  double plane_px = 0.5;       // transfer error within which a feature lies on a plane
+  size_t min_features = 10;    // per plane and check
+  int max_planes = 4;          // found per check
+  int confirm_after = 3;       // checks finding a segment before it is a static plane
+  int reject_after = 3;        // consecutive checks with most of its features moving
+  int iterations = 200;        // RANSAC samples per model
+  int sample_neighbours = 12;  // a plane's samples: a feature and two of its nearest neighbours
+  double focal_px = 460;       // pixel scale of the thresholds
 };
 
 /// The plane m of y ~ x + t (mᵀ x) through the given pairs, by least squares over
@@ -74,7 +74,7 @@ class PlaneDiscovery {
     std::vector<int> features;  // ids
   };
   struct CheckResult {
-    bool judged = false;  // enough parallax and a translation consensus
+    bool judged = false;                          // enough parallax and a translation consensus
     Eigen::Vector3d t = Eigen::Vector3d::Zero();  // unit; points in front have mᵀx > 0
     std::vector<int> moving;                      // ids off their epipolar lines
     std::vector<FoundPlane> planes;               // largest first

@@ -117,8 +117,8 @@ TEST(PlaneDiscoveryOnRealImages, FindsTheCheckerboardWithItsTrueHomographies) {
     const Eigen::Matrix3d H_true = boardHomography(poses[k], poses[k + kGap]);
     std::vector<double> errors;
     for (const Eigen::Vector2d& u : from) {
-      const Eigen::Vector2d d = (*H * u.homogeneous()).hnormalized() -
-                                (H_true * u.homogeneous()).hnormalized();
+      const Eigen::Vector2d d =
+          (*H * u.homogeneous()).hnormalized() - (H_true * u.homogeneous()).hnormalized();
       errors.push_back(std::hypot(camera.fx * d.x(), camera.fy * d.y()));
     }
     std::nth_element(errors.begin(), errors.begin() + errors.size() / 2, errors.end());
@@ -128,9 +128,10 @@ TEST(PlaneDiscoveryOnRealImages, FindsTheCheckerboardWithItsTrueHomographies) {
   std::vector<double> sorted = frame_errors;
   std::sort(sorted.begin(), sorted.end());
   const double median = sorted[sorted.size() / 2], p90 = sorted[sorted.size() * 9 / 10];
-  std::printf("board homographies k -> k+%d on %zu of %d frame pairs: transfer error median "
-              "%.3f px, p90 %.3f px\n",
-              kGap, frames_with_board, kFrames - kGap, median, p90);
+  std::printf(
+      "board homographies k -> k+%d on %zu of %d frame pairs: transfer error median "
+      "%.3f px, p90 %.3f px\n",
+      kGap, frames_with_board, kFrames - kGap, median, p90);
   EXPECT_GE(frames_with_board, 0.9 * (kFrames - kGap));  // found early and kept
   EXPECT_LE(median, 1.0);
 }

@@ -16,7 +16,7 @@
 namespace rpvio {
 namespace {
 
-using namespace test;  // the scene
+using namespace test;         // the scene
 constexpr double kRate = 20;  // Hz
 
 /// A slower turn than the verifier's (2 s in view) and a panel at 4.25 m, where no floor point
@@ -85,12 +85,14 @@ TEST(PlaneDiscovery, OneCheckFindsTheWallAndTheFloorAndSetsTheDrivingPanelAside)
   const Eigen::Vector3d towards_camera(0, 0, -1.0);
   const FeatureFrame j = frameAt(0.0, towards_camera, 0, 0.1, rng);
   const FeatureFrame k = frameAt(0.3, towards_camera, 0, 0.1, rng);
-  const Eigen::Matrix3d R_kj = scene().cameraRotation(0.3).transpose() * scene().cameraRotation(0.0);
+  const Eigen::Matrix3d R_kj =
+      scene().cameraRotation(0.3).transpose() * scene().cameraRotation(0.0);
   PlaneDiscoveryOptions options;
   const PlaneDiscovery discovery(options);
   const PlaneDiscovery::CheckResult result = discovery.check(j, k, R_kj);
   ASSERT_TRUE(result.judged);
-  const Eigen::Vector3d T_kj = scene().cameraRotation(0.3).transpose() * (scene().cameraPosition(0) - scene().cameraPosition(0.3));
+  const Eigen::Vector3d T_kj = scene().cameraRotation(0.3).transpose() *
+                               (scene().cameraPosition(0) - scene().cameraPosition(0.3));
   EXPECT_GT(result.t.dot(T_kj.normalized()), std::cos(1.0 * M_PI / 180));  // within 1°, sign too
   // Most panel points are set aside (those whose extra motion runs along their epipolar line
   // cannot be: the limit of any two-view test); no wall or floor point is.
@@ -127,7 +129,8 @@ DiscoveryRun run(double panel_starts, double duration = 2.0, bool translate = tr
   std::mt19937 rng(7);
   for (int k = 0; k <= duration * kRate; ++k) {
     const double t = k / kRate;
-    FeatureFrame frame = frameAt(translate ? t : 0, Eigen::Vector3d(0, 0, -1.0), panel_starts, 0.1, rng);
+    FeatureFrame frame =
+        frameAt(translate ? t : 0, Eigen::Vector3d(0, 0, -1.0), panel_starts, 0.1, rng);
     frame.t = t;
     if (!translate) {  // the same position, turning only
       for (TrackedFeature& f : frame.features)
@@ -136,7 +139,8 @@ DiscoveryRun run(double panel_starts, double duration = 2.0, bool translate = tr
                            .hnormalized();
     }
     const Eigen::Quaterniond R_previous_current(
-        scene().cameraRotation(std::max(0.0, t - 1 / kRate)).transpose() * scene().cameraRotation(t));
+        scene().cameraRotation(std::max(0.0, t - 1 / kRate)).transpose() *
+        scene().cameraRotation(t));
     r.outputs.push_back(r.discovery.label(frame, R_previous_current));
   }
   return r;
