@@ -43,7 +43,11 @@ std::optional<InitializedWindow> Bootstrapper::addFrame(
   }
   if (frame.features.empty()) buffer_.clear();  // no structure can span a blank frame
   buffer_.emplace_back(frame, imu_since_previous);
-  if (buffer_.size() > options_.init_window_frames) buffer_.pop_front();
+  // The newest init_window_frames frames, or more when they span less than init_window_s (a
+  // camera faster than 20 Hz).
+  if (buffer_.size() > options_.init_window_frames &&
+      buffer_.back().first.t - buffer_[1].first.t >= options_.init_window_s - 1e-6)
+    buffer_.pop_front();
   auto window = tryInitialize();
   if (window) buffer_.clear();
   return window;

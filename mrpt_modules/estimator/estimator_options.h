@@ -68,7 +68,8 @@ struct EstimatorOptions {
   // ... and the new window is placed in the old world by dead reckoning from the last good state
   // when the reset was at most this long ago (else the trajectory continues in a new world).
   double max_reconnect_s = 20;
-  size_t init_window_frames = 41;  // frames kept while initializing (2 s at 20 Hz)
+  size_t init_window_frames = 41;  // frames kept while initializing (2 s at 20 Hz; more when
+                                   // they span less than init_window_s)
   // Camera-IMU time offset, estimated once from the first initialization window's rotations
   // (time_offset.h), searched within ±max_time_offset_s. When at least min_time_offset_s and 3
   // sigma, the window is initialized again on the corrected frame times, and the correction kept

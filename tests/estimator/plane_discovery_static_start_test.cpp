@@ -38,7 +38,8 @@ TEST(PlaneDiscoveryOnRealImages, FindsNothingWhileTheCameraSitsStill) {
       if (imu[next_sample].t < previous_t) continue;
       const Eigen::Vector3d angle =
           imu[next_sample].gyro * (imu[next_sample + 1].t - imu[next_sample].t);
-      if (angle.norm() > 0) q_body = q_body * Eigen::Quaterniond(Eigen::AngleAxisd(angle.norm(), angle.normalized()));
+      if (angle.norm() > 0)
+        q_body = q_body * Eigen::Quaterniond(Eigen::AngleAxisd(angle.norm(), angle.normalized()));
     }
     const Eigen::Quaterniond R_previous_current = q_BC.inverse() * q_body * q_BC;
     const FeatureFrame out = discovery.label(frame, R_previous_current);
