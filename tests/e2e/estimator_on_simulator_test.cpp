@@ -22,16 +22,27 @@ struct SimulatorRun {
   eval::PlaneMapAccuracy planes;
 };
 
-SimulatorRun runOnSimulator(int characters, double duration,
-                            HomographyPlanes homography = EstimatorOptions{}.homography_planes) {
+/// What differs from the defaults (rpvio-single without verification, 20 Hz).
+struct RunSetup {
+  HomographyPlanes homography = EstimatorOptions{}.homography_planes;
+  bool discover_planes = false;  // rpvio-auto: no masks, init_window_s 2.5 (its config's)
+  double camera_rate = 20;       // Hz, the simulator's default
+};
+
+SimulatorRun runOnSimulator(int characters, double duration, const RunSetup& setup = {}) {
   sim::SimConfig config;
   config.duration = duration;
   config.scene.characters = characters;
+  config.camera_rate = setup.camera_rate;
   sim::Simulator sim(config);
   const auto imu = sim.imuStream();
-  FeatureTracker tracker(sim.calibration().camera, TrackerOptions{});
+  TrackerOptions tracking;
+  tracking.use_masks = !setup.discover_planes;
+  FeatureTracker tracker(sim.calibration().camera, tracking);
   EstimatorOptions options;
-  options.homography_planes = homography;
+  options.homography_planes = setup.homography;
+  options.discover_planes = setup.discover_planes;
+  if (setup.discover_planes) options.init_window_s = 2.5;
   MapBuilder map(PlanesMapOptions{}, MapBuilderOptions{});
   SlidingWindowEstimator estimator(sim.calibration(), options, map);
   SimulatorRun run;
@@ -100,11 +111,39 @@ TEST(EstimatorOnSimulator, PlanarModeInitializesAtTheTakeOffWithOneCharacter) {
   EXPECT_EQ(resets, 0u);
 }
 
+// A camera faster than 20 Hz: the initialization window keeps 2 s of frames, not 41 frames
+// (1.4 s at 30 Hz: it never initialized).
+TEST(EstimatorOnSimulator, PlanarModeInitializesAtThirtyHertz) {
+  RunSetup setup;
+  setup.camera_rate = 30;
+  const SimulatorRun run = runOnSimulator(0, 3.0, setup);
+  std::printf("static 3 s at 30 Hz: first pose at %.2f s, ATE RMSE %.3f m\n", run.first_pose_t,
+              run.trajectory.ate.rmse);
+  EXPECT_GE(run.first_pose_t, 1.99);
+  EXPECT_LE(run.first_pose_t, 2.2);
+  EXPECT_LT(run.trajectory.ate.rmse, 0.05);
+}
+
+// rpvio-auto: no masks; the planes it discovers carry the estimator from the take-off on.
+TEST(EstimatorOnSimulator, AutoModeFindsItsPlanesAndTracksWithoutMasks) {
+  RunSetup setup;
+  setup.discover_planes = true;
+  const SimulatorRun run = runOnSimulator(1, 20.0, setup);
+  std::printf("C1 20 s, rpvio-auto: first pose at %.2f s, ATE RMSE %.3f m, resets %zu\n",
+              run.first_pose_t, run.trajectory.ate.rmse, run.resets);
+  EXPECT_GE(run.first_pose_t, 2.49);  // a 2.5 s window
+  EXPECT_LE(run.first_pose_t, 3.0);
+  // Measured 0.082 m (rpvio-single: 0.03–0.05 m); issue #34's target, 0.08 m on the 80 s
+  // sequences, is not reached yet. This bound catches a discovery that breaks the estimator.
+  EXPECT_LT(run.trajectory.ate.rmse, 0.15);
+  EXPECT_EQ(run.resets, 0u);
+}
+
 // The plane map's covariances (the windows' information, fused over visits) against the truth,
 // every plane in the estimator (rpvio-multi): errors within 3 sigma, and sigmas that say something
 // (not vacuously large).
 TEST(EstimatorOnSimulator, PlaneMapCovariancesAreConsistent) {
-  const SimulatorRun run = runOnSimulator(0, 20.0, HomographyPlanes::kAll);
+  const SimulatorRun run = runOnSimulator(0, 20.0, {HomographyPlanes::kAll});
   ASSERT_GE(run.planes.planes.size(), 4u);
   std::vector<double> normal_sigmas;
   for (const auto& p : run.planes.planes) {
