@@ -192,22 +192,28 @@ PlaneDiscovery::CheckResult PlaneDiscovery::check(const FeatureFrame& j, const F
          still.size() >= options_.min_features) {
     std::uniform_int_distribution<size_t> pick(0, still.size() - 1);
     std::vector<size_t> best;
+    std::vector<std::vector<size_t>> nearest(pairs.size());  // per seed, among `still`, on demand
     for (int it = 0; it < options_.iterations; ++it) {
       // A feature and two of its nearest image neighbours.
       const size_t seed = still[pick(random)];
-      std::vector<std::pair<double, size_t>> near;
-      for (size_t i : still)
-        if (i != seed)
-          near.push_back(
-              {(pairs[i].k.hnormalized() - pairs[seed].k.hnormalized()).squaredNorm(), i});
-      const size_t n = std::min<size_t>(near.size(), options_.sample_neighbours);
+      std::vector<size_t>& near = nearest[seed];
+      if (near.empty()) {
+        std::vector<std::pair<double, size_t>> by_distance;
+        for (size_t i : still)
+          if (i != seed)
+            by_distance.push_back(
+                {(pairs[i].k.hnormalized() - pairs[seed].k.hnormalized()).squaredNorm(), i});
+        const size_t n = std::min<size_t>(by_distance.size(), options_.sample_neighbours);
+        std::partial_sort(by_distance.begin(), by_distance.begin() + n, by_distance.end());
+        for (size_t k = 0; k < n; ++k) near.push_back(by_distance[k].second);
+      }
+      const size_t n = near.size();
       if (n < 2) break;
-      std::partial_sort(near.begin(), near.begin() + n, near.end());
       std::uniform_int_distribution<size_t> neighbour(0, n - 1);
       const size_t a = neighbour(random);
       size_t b = neighbour(random);
       if (b == a) b = (a + 1) % n;
-      const auto m = planeThroughPairs(pairs, {seed, near[a].second, near[b].second}, result.t);
+      const auto m = planeThroughPairs(pairs, {seed, near[a], near[b]}, result.t);
       if (!m) continue;
       std::vector<size_t> in = members(*m);
       if (in.size() > best.size()) best.swap(in);

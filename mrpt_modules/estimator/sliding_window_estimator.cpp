@@ -420,10 +420,10 @@ FeatureFrame SlidingWindowEstimator::screenPlanes(const FeatureFrame& frame,
 
 std::optional<StateEstimate> SlidingWindowEstimator::addFrame(
     const FeatureFrame& camera_frame, const std::vector<ImuSample>& imu_since_previous) {
+  const auto start = std::chrono::steady_clock::now();  // the screening's time is counted too
   const FeatureFrame frame = screenPlanes(camera_frame, imu_since_previous);
   // While initializing, discovered labels reach back over the buffered frames (setFrameScreen).
   const FeatureFrame& to_bootstrapper = options_.discover_planes ? camera_frame : frame;
-  const auto start = std::chrono::steady_clock::now();
   auto elapsed_ms = [&] {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
         .count();
