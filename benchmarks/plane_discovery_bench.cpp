@@ -2,7 +2,8 @@
 // C4 frames tracked without masks (150 features), with the simulator's camera rotations standing
 // in for the gyroscope; the front-end's time on the same frames is bench_frontend's
 // BM_FrontendNoMasks.
-// Run: build/bin/bench_plane_discovery --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+// Run: build/bin/bench_plane_discovery --benchmark_repetitions=5
+// --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 #include <algorithm>
 #include <chrono>

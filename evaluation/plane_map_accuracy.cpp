@@ -6,6 +6,30 @@
 #include <set>
 
 namespace rpvio::eval {
+namespace {
+
+/// The plane n·X = d of the estimate's world in the ground truth's: (R n)·X' = s d + (R n)·t.
+std::pair<Eigen::Vector3d, double> inGroundTruth(const Plane& p, const Similarity& est_to_gt) {
+  const Eigen::Vector3d n = est_to_gt.R * p.normal;
+  return {n, est_to_gt.s * p.distance + n.dot(est_to_gt.t)};
+}
+
+/// The static true plane a discovered map plane stands for (see the header), or 0.
+int nearestTruePlane(const Plane& p, const std::map<int, const Plane*>& true_of_label,
+                     const Similarity& est_to_gt) {
+  const auto [n, d] = inGroundTruth(p, est_to_gt);
+  int best = 0;
+  double best_offset = kDiscoveredMatchM;
+  for (const auto& [id, truth] : true_of_label) {
+    const double sign = n.dot(truth->normal) < 0 ? -1 : 1;
+    const double angle = std::acos(std::clamp(sign * n.dot(truth->normal), -1.0, 1.0)) * 180 / M_PI;
+    const double offset = std::abs(sign * d - truth->distance);
+    if (angle <= kDiscoveredMatchDeg && offset < best_offset) best = id, best_offset = offset;
+  }
+  return best;
+}
+
+}  // namespace
 
 PlaneMapAccuracy evaluatePlaneMap(const std::vector<Plane>& map, const std::vector<Plane>& truth,
                                   const Similarity& est_to_gt) {
@@ -24,6 +48,10 @@ PlaneMapAccuracy evaluatePlaneMap(const std::vector<Plane>& map, const std::vect
     std::vector<int> labels;
     for (int mask : p.mask_ids)
       if (true_of_label.count(mask)) labels.push_back(mask);
+    if (p.discovered()) {
+      ++result.discovered;
+      if (const int id = nearestTruePlane(p, true_of_label, est_to_gt)) labels = {id};
+    }
     const bool on_moving = std::any_of(p.mask_ids.begin(), p.mask_ids.end(),
                                        [&](int mask) { return moving_labels.count(mask) > 0; });
     if (labels.empty()) ++(on_moving ? result.on_moving : result.unmatched);
@@ -39,9 +67,7 @@ PlaneMapAccuracy evaluatePlaneMap(const std::vector<Plane>& map, const std::vect
     const Plane& best = **std::max_element(
         planes.begin(), planes.end(),
         [](const Plane* x, const Plane* y) { return x->observations < y->observations; });
-    // n·X = d in the estimate's world → (R n)·X' = s d + (R n)·t in the ground truth's.
-    Eigen::Vector3d n = est_to_gt.R * best.normal;
-    double d = est_to_gt.s * best.distance + n.dot(est_to_gt.t);
+    auto [n, d] = inGroundTruth(best, est_to_gt);
     if (n.dot(true_plane.normal) < 0) n = -n, d = -d;
     a.normal_error_deg = std::acos(std::clamp(n.dot(true_plane.normal), -1.0, 1.0)) * 180 / M_PI;
     a.distance_error_m = std::abs(d - true_plane.distance);

@@ -26,14 +26,19 @@ struct PlaneMapAccuracy {
   std::vector<TruePlaneAccuracy> planes;  // true planes in the map, by id
   size_t map_planes = 0;                  // entries in the map
   size_t duplicates = 0;                  // Σ (map_entries − 1)
-  size_t mixed = 0;      // map planes seen as labels of several true planes (wrong merges)
-  size_t unmatched = 0;  // map planes whose labels are no true plane
-  size_t on_moving = 0;  // map planes seen only as labels of moving planes (not scored)
+  size_t mixed = 0;       // map planes seen as labels of several true planes (wrong merges)
+  size_t unmatched = 0;   // map planes whose labels are no true plane
+  size_t on_moving = 0;   // map planes seen only as labels of moving planes (not scored)
+  size_t discovered = 0;  // map planes of the plane discovery (rpvio-auto), matched by geometry
 };
 
 /// `map` in the estimate's world, `truth` (id = label) in the ground-truth world; `est_to_gt` the
 /// trajectory alignment (X_gt = s R X_est + t). Moving true planes (moving objects' faces) are no
-/// static planes to score: a map plane seen only as their labels counts in `on_moving`.
+/// static planes to score: a map plane seen only as their labels counts in `on_moving`. A
+/// discovered map plane (no mask label) stands for the static true plane nearest to it once
+/// aligned: normal within kDiscoveredMatchDeg, offset within kDiscoveredMatchM (the smallest
+/// offset among those), else it is unmatched.
+constexpr double kDiscoveredMatchDeg = 10, kDiscoveredMatchM = 0.3;
 PlaneMapAccuracy evaluatePlaneMap(const std::vector<Plane>& map, const std::vector<Plane>& truth,
                                   const Similarity& est_to_gt);
 

@@ -117,6 +117,7 @@ JsonObject planeMapJson(const EvalAppOptions& opt, const EvalAppResult& res) {
       .integer("mixed", static_cast<long long>(m.mixed))
       .integer("unmatched", static_cast<long long>(m.unmatched))
       .integer("on_moving", static_cast<long long>(m.on_moving))
+      .integer("discovered", static_cast<long long>(m.discovered))
       .objects("planes", planes);
   if (res.visible_s) {
     const auto& missing = res.missing_planes;
@@ -156,11 +157,12 @@ std::string formatPlaneMapReport(const eval::PlaneMapAccuracy& m) {
   char line[400];
   std::snprintf(line, sizeof(line),
                 "\nplane map: %zu entries for %zu true planes (duplicates %zu, mixed %zu, "
-                "unmatched %zu, on moving objects %zu); normal error median %.2f max %.2f deg, "
-                "offset error median %.3f max %.3f m\n%6s %8s %11s %11s %8s %11s %11s\n",
+                "unmatched %zu, on moving objects %zu, from discovery %zu); normal error median "
+                "%.2f max %.2f deg, offset error median %.3f max %.3f m\n%6s %8s %11s %11s %8s "
+                "%11s %11s\n",
                 m.map_planes, m.planes.size(), m.duplicates, m.mixed, m.unmatched, m.on_moving,
-                n.median, n.max, d.median, d.max, "plane", "entries", "normal deg", "offset m",
-                "seen s", "sigma deg", "sigma m");
+                m.discovered, n.median, n.max, d.median, d.max, "plane", "entries", "normal deg",
+                "offset m", "seen s", "sigma deg", "sigma m");
   out << line;
   for (const auto& p : m.planes) {
     std::snprintf(line, sizeof(line), "%6d %8zu %11.2f %11.3f %8.1f %11.2f %11.3f\n", p.true_id,

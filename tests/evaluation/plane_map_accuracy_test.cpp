@@ -49,6 +49,26 @@ TEST(PlaneMapAccuracy, ExactMapInAnotherFrameHasNoError) {
   }
 }
 
+TEST(PlaneMapAccuracy, DiscoveredPlanesStandForTheNearestTruePlane) {
+  const std::vector<Plane> truth = {plane(1, {0, 0, 1}, 0, {1}), plane(2, {1, 0, 0}, 5, {2}),
+                                    plane(3, {1, 0, 0}, 8, {3})};
+  const double tilt = 2 * M_PI / 180;
+  const std::vector<Plane> map = {
+      plane(1, {0, std::sin(tilt), std::cos(tilt)}, 0.05, {kFirstDiscoveredLabel}),  // floor
+      plane(2, {-1, 0, 0}, -7.9, {kFirstDiscoveredLabel + 1}),  // the farther wall, 10 cm off
+      plane(3, {0, 1, 0}, 2, {kFirstDiscoveredLabel + 2}),      // no true plane near it
+      plane(4, {1, 0, 0}, 5, {2})};                             // a mask plane, as before
+  const auto a = eval::evaluatePlaneMap(map, truth, eval::Similarity{});
+  EXPECT_EQ(a.discovered, 3u);
+  EXPECT_EQ(a.unmatched, 1u);
+  ASSERT_EQ(a.planes.size(), 3u);
+  EXPECT_EQ(a.planes[0].true_id, 1);
+  EXPECT_NEAR(a.planes[0].normal_error_deg, 2.0, 1e-9);
+  EXPECT_NEAR(a.planes[0].distance_error_m, 0.05, 1e-12);
+  EXPECT_EQ(a.planes[2].true_id, 3);
+  EXPECT_NEAR(a.planes[2].distance_error_m, 0.1, 1e-12);
+}
+
 TEST(PlaneMapAccuracy, CountsDuplicatesMergesAndMeasuresTheMostObservedEntry) {
   const std::vector<Plane> truth = {plane(1, {0, 0, 1}, 0, {1}), plane(2, {1, 0, 0}, 5, {2})};
   const double tilt = 3 * M_PI / 180;
