@@ -10,6 +10,9 @@ void EstimatorOptions::validate(const OptionsLoader& loader) const {
   loader.require(verify_reject_after >= 1, "verify_reject_after", "must be 1 or more");
   loader.require(verify_min_features >= 3, "verify_min_features", "must be 3 or more");
   loader.require(discover_min_features >= 3, "discover_min_features", "must be 3 or more");
+  loader.require(discover_span_s > 0, "discover_span_s", "must be positive");
+  loader.require(verify_span_s > 0, "verify_span_s", "must be positive");
+  loader.require(init_window_frames >= 2, "init_window_frames", "must be 2 or more");
   loader.require(discover_confirm_after >= 1, "discover_confirm_after", "must be 1 or more");
   loader.require(discover_reject_after >= 1, "discover_reject_after", "must be 1 or more");
 }

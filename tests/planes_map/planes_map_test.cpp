@@ -360,6 +360,7 @@ TEST(PlaneMapExporters, DiscoveredPlanesSaySoAndParseBack) {
   writePlanesYaml(dir.file("planes.yaml"), {mask, discovered});
   std::ifstream in(dir.file("planes.yaml"));
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_NE(text.find("source: discovery"), std::string::npos);
   EXPECT_EQ(text.find("source: discovery"), text.rfind("source: discovery"));  // once
   EXPECT_GT(text.find("source: discovery"), text.find("id: 2"));               // on plane 2
   const auto back = readPlanesYaml(dir.file("planes.yaml"));
