@@ -47,16 +47,20 @@ std::array<bool, 256> labelsIn(const cv::Mat& mask) {
   return labelled;
 }
 
-/// The local affine map (2x2) of the image motion around `tracks[i]`, least squares over its
-/// nearest neighbours' displacements relative to its own (from → pixel): where no plane
-/// homography is known, it stands for the Jacobian of the surface's homography (the surface is
-/// smooth at the scale of the neighbourhood). None with fewer than three neighbours within reach.
-template <class Track>
-std::optional<cv::Matx22d> localImageMotion(const std::vector<Track>& tracks, size_t i,
+/// A track's motion between the previous frame and this one (px).
+struct PixelMotion {
+  cv::Point2f from, to;
+};
+
+/// The local affine map (2x2) of the image motion around `motions[i]`, least squares over its
+/// nearest neighbours' displacements relative to its own: where no plane homography is known, it
+/// stands for the Jacobian of the surface's homography (the surface is smooth at the scale of the
+/// neighbourhood). None with fewer than three neighbours within reach.
+std::optional<cv::Matx22d> localImageMotion(const std::vector<PixelMotion>& motions, size_t i,
                                             size_t neighbours, double reach_px) {
   std::vector<std::pair<double, size_t>> near;
-  for (size_t k = 0; k < tracks.size(); ++k) {
-    const double d = cv::norm(tracks[k].from - tracks[i].from);
+  for (size_t k = 0; k < motions.size(); ++k) {
+    const double d = cv::norm(motions[k].from - motions[i].from);
     if (k != i && d < reach_px) near.push_back({d, k});
   }
   if (near.size() < 3) return std::nullopt;
@@ -64,9 +68,9 @@ std::optional<cv::Matx22d> localImageMotion(const std::vector<Track>& tracks, si
   std::partial_sort(near.begin(), near.begin() + n, near.end());
   cv::Matx22d moved_from = cv::Matx22d::zeros(), from_from = cv::Matx22d::zeros();
   for (size_t k = 0; k < n; ++k) {
-    const Track& t = tracks[near[k].second];
-    const cv::Vec2d a(t.from.x - tracks[i].from.x, t.from.y - tracks[i].from.y);
-    const cv::Vec2d b(t.pixel.x - tracks[i].pixel.x, t.pixel.y - tracks[i].pixel.y);
+    const PixelMotion& m = motions[near[k].second];
+    const cv::Vec2d a(m.from.x - motions[i].from.x, m.from.y - motions[i].from.y);
+    const cv::Vec2d b(m.to.x - motions[i].to.x, m.to.y - motions[i].to.y);
     moved_from += b * a.t();
     from_from += a * a.t();
   }
@@ -159,7 +163,11 @@ void FeatureTracker::refineAgainstAnchors(std::vector<Track>& tracks,
   TemplateAlignmentOptions alignment;
   alignment.half_window = options_.klt_window / 2;
   std::vector<Track> out;
-  const std::vector<Track> moved = tracks;  // the neighbourhoods of local_warps
+  // The frame-to-frame motions before re-alignment: the neighbourhoods of local_warps.
+  const bool neighbour_warps = !options_.use_masks && options_.local_warps;
+  std::vector<PixelMotion> motions;
+  if (neighbour_warps)
+    for (const Track& tr : tracks) motions.push_back({tr.from, tr.pixel});
   for (size_t i = 0; i < tracks.size(); ++i) {
     Track& tr = tracks[i];
     // Local affine map of the plane's homography at the previous position; without masks, of
@@ -167,8 +175,8 @@ void FeatureTracker::refineAgainstAnchors(std::vector<Track>& tracks,
     const auto h = homographies.find(tr.plane_id);
     if (h != homographies.end())
       tr.warp = homographyJacobian(h->second, tr.from) * tr.warp;
-    else if (!options_.use_masks && options_.local_warps)
-      if (const auto local = localImageMotion(moved, i, 8, 4 * options_.min_distance))
+    else if (neighbour_warps)
+      if (const auto local = localImageMotion(motions, i, 8, 4 * options_.min_distance))
         tr.warp = *local * tr.warp;
     cv::Mat singular_values;
     cv::SVD::compute(tr.warp, singular_values, cv::SVD::NO_UV);

@@ -8,6 +8,7 @@
 #include "common/text_table.h"
 #include "mrpt_modules/estimator/plane_discovery.h"
 #include "mrpt_modules/frontend/feature_tracker.h"
+#include "mrpt_modules/imu/imu_preintegration.h"
 #include "rawlog_io/euroc_csv.h"
 #include "rawlog_io/euroc_import.h"
 #include "tests/test_util.h"
@@ -32,15 +33,17 @@ TEST(PlaneDiscoveryOnRealImages, FindsNothingWhileTheCameraSitsStill) {
     const double t = parseFiniteNumber(f[0], "data.csv", line) * 1e-9;
     const FeatureFrame frame =
         tracker.track(t, cv::imread(mav0 + "/cam0/data/" + f[1], cv::IMREAD_GRAYSCALE), {});
-    // The body's rotation since the previous frame from the gyroscope (Euler steps), in the camera.
+    // The body's rotation since the previous frame from the gyroscope, in the camera.
     Eigen::Quaterniond q_body = Eigen::Quaterniond::Identity();
-    for (; next_sample + 1 < imu.size() && imu[next_sample + 1].t <= t; ++next_sample) {
-      if (imu[next_sample].t < previous_t) continue;
-      const Eigen::Vector3d angle =
-          imu[next_sample].gyro * (imu[next_sample + 1].t - imu[next_sample].t);
-      if (angle.norm() > 0)
-        q_body = q_body * Eigen::Quaterniond(Eigen::AngleAxisd(angle.norm(), angle.normalized()));
+    if (previous_t >= 0) {
+      ImuPreintegration rotation(imu[next_sample].accel, imu[next_sample].gyro,
+                                 Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), calib.imu);
+      for (; next_sample + 1 < imu.size() && imu[next_sample + 1].t <= t; ++next_sample)
+        rotation.push(imu[next_sample + 1].t - imu[next_sample].t, imu[next_sample + 1].accel,
+                      imu[next_sample + 1].gyro);
+      q_body = rotation.deltaQ();
     }
+    while (next_sample + 1 < imu.size() && imu[next_sample + 1].t <= t) ++next_sample;
     const Eigen::Quaterniond R_previous_current = q_BC.inverse() * q_body * q_BC;
     const FeatureFrame out = discovery.label(frame, R_previous_current);
     ++frames;
