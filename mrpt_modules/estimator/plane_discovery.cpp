@@ -286,16 +286,17 @@ void PlaneDiscovery::update(const CheckResult& result, const FeatureFrame& frame
     }
     for (const int id : plane.features) labels_[id] = {segment, true, frame.t};
   }
-  // Features of a found segment that no longer fit it, and those of rejected segments, lose
-  // their label.
-  std::set<int> on_found;
+  // Compared features of a found segment that no longer fit it, and all features of rejected
+  // segments, lose their label. Ended tracks keep theirs for the frames they were seen in.
+  std::set<int> on_found, compared;
   for (const FoundPlane& plane : result.planes)
     on_found.insert(plane.features.begin(), plane.features.end());
+  for (const TrackedFeature& f : frame.features) compared.insert(f.id);
   for (auto it = labels_.begin(); it != labels_.end();) {
-    const int segment = it->second.segment;
+    const int id = it->first, segment = it->second.segment;
     const bool lost =
         segments_[segment].rejected ||
-        (matched.count(segment) && !on_found.count(it->first) && !moving.count(it->first));
+        (matched.count(segment) && compared.count(id) && !on_found.count(id) && !moving.count(id));
     it = lost ? labels_.erase(it) : std::next(it);
   }
 }

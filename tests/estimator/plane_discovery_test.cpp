@@ -1,7 +1,8 @@
 // PlaneDiscovery on exact geometry with tracker-like noise: the 3-point known-rotation plane
 // solver against exact data; one check separating a wall and a floor (static) from a panel
 // driving towards the camera; over a run, a parked panel accepted as a static plane and rejected
-// once it starts moving; nothing labelled while the camera only turns.
+// once it starts moving; ended tracks keep their labels; nothing labelled while the camera only
+// turns.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -121,7 +122,8 @@ struct DiscoveryRun {
   PlaneDiscovery discovery{PlaneDiscoveryOptions{}};
   std::vector<FeatureFrame> outputs;
 };
-DiscoveryRun run(double panel_starts, double duration = 2.0, bool translate = true) {
+DiscoveryRun run(double panel_starts, double duration = 2.0, bool translate = true,
+                 const std::set<int>& tracks_ending_at_1s = {}) {
   DiscoveryRun r;
   PlaneDiscoveryOptions options;
   options.enabled = true;
@@ -132,6 +134,12 @@ DiscoveryRun run(double panel_starts, double duration = 2.0, bool translate = tr
     FeatureFrame frame =
         frameAt(translate ? t : 0, Eigen::Vector3d(0, 0, -1.0), panel_starts, 0.1, rng);
     frame.t = t;
+    if (t >= 1.0)
+      frame.features.erase(std::remove_if(frame.features.begin(), frame.features.end(),
+                                          [&](const TrackedFeature& f) {
+                                            return tracks_ending_at_1s.count(f.id) > 0;
+                                          }),
+                           frame.features.end());
     if (!translate) {  // the same position, turning only
       for (TrackedFeature& f : frame.features)
         f.normalized = (scene().cameraRotation(t).transpose() * scene().cameraRotation(0) *
@@ -188,6 +196,25 @@ TEST(PlaneDiscovery, AParkedPanelIsAcceptedAndRejectedOnceItDrivesOff) {
   std::set<int> last;
   for (const TrackedFeature& x : r.outputs.back().features) last.insert(planeOf(x.id));
   EXPECT_EQ(last, (std::set<int>{kWall, kFloor}));
+}
+
+TEST(PlaneDiscovery, EndedTracksKeepTheirLabelsWhileTheirPlaneIsFoundAgain) {
+  // A third of the wall's tracks end at 1 s; its segment is found again by every later check.
+  std::set<int> ending;
+  for (const ScenePoint& p : scene().points())
+    if (p.plane == kWall && p.id % 3 == 0) ending.insert(p.id);
+  const DiscoveryRun r = run(/*panel_starts=*/10, 2.0, true, ending);
+  const FeatureFrame& at_0_9s = r.outputs[18];
+  int ended_labelled_then = 0;
+  for (const TrackedFeature& f : at_0_9s.features) ended_labelled_then += ending.count(f.id);
+  ASSERT_GE(ended_labelled_then, 5);
+  // The initializer asks for that frame again 1 s later: the ended tracks keep their labels.
+  FeatureFrame unlabelled = at_0_9s;
+  for (TrackedFeature& f : unlabelled.features) f.plane_id = 0;
+  int ended_labelled_now = 0;
+  for (const TrackedFeature& f : r.discovery.labelled(unlabelled).features)
+    ended_labelled_now += ending.count(f.id);
+  EXPECT_EQ(ended_labelled_now, ended_labelled_then);
 }
 
 TEST(PlaneDiscovery, NothingIsLabelledWhileTheCameraOnlyTurns) {
