@@ -1,9 +1,12 @@
 // Marginalization prior: exact on a linear Gaussian problem (eliminating blocks and solving what
-// remains gives the full solution), and its Jacobians on pose blocks agree with numeric
+// remains gives the full solution; also with scalar blocks eliminated by division, and with
+// scalars that share a factor), and its Jacobians on pose blocks agree with numeric
 // derivatives on the manifold away from the linearization point.
 #include <gtest/gtest.h>
 
 #include <ceres/ceres.h>
+
+#include <algorithm>
 #include <random>
 
 #include "mrpt_modules/factors/marginalization.h"
@@ -89,6 +92,94 @@ TEST(Marginalization, ExactOnLinearProblem) {
   ceres::Solve(options, &problem_reduced, &summary);
   for (int k : {2, 3})
     for (size_t i = 0; i < x[k].size(); ++i) EXPECT_NEAR(reduced[k][i], full[k][i], 1e-8);
+}
+
+/// Eliminating `removed` (indices into x) from the linear factors `specs`, then solving the rest
+/// with the prior, gives the full problem's solution of the kept blocks.
+void expectExactElimination(const std::vector<std::vector<int>>& specs,
+                            const std::vector<std::vector<double>>& x,
+                            const std::vector<int>& removed) {
+  std::mt19937 rng(11);
+  std::normal_distribution<double> N(0, 1);
+  std::vector<std::vector<Eigen::MatrixXd>> A;
+  std::vector<Eigen::VectorXd> b;
+  for (const auto& blocks : specs) {
+    A.emplace_back();
+    for (int k : blocks)
+      A.back().push_back(
+          Eigen::MatrixXd::NullaryExpr(3, static_cast<int>(x[k].size()), [&] { return N(rng); }));
+    b.push_back(Eigen::VectorXd::NullaryExpr(3, [&] { return N(rng); }));
+  }
+  auto pointers = [&](size_t i, std::vector<std::vector<double>>& v) {
+    std::vector<double*> p;
+    for (int k : specs[i]) p.push_back(v[k].data());
+    return p;
+  };
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::DENSE_QR;
+  // Tight enough for 1e-8, loose enough to end in convergence (a failed solve keeps x).
+  options.function_tolerance = options.parameter_tolerance = 1e-16;
+  options.gradient_tolerance = 1e-13;
+  ceres::Solver::Summary summary;
+  auto full = x;
+  ceres::Problem problem_full;
+  for (size_t i = 0; i < specs.size(); ++i)
+    problem_full.AddResidualBlock(new LinearFactor(A[i], b[i]), nullptr, pointers(i, full));
+  ceres::Solve(options, &problem_full, &summary);
+  ASSERT_TRUE(summary.IsSolutionUsable());
+  auto reduced = x;
+  Marginalizer marginalizer;
+  std::set<const double*> remove;
+  for (int k : removed) remove.insert(reduced[k].data());
+  std::vector<size_t> untouched;  // factors on kept blocks only
+  for (size_t i = 0; i < specs.size(); ++i) {
+    const bool touches = std::any_of(specs[i].begin(), specs[i].end(), [&](int k) {
+      return std::find(removed.begin(), removed.end(), k) != removed.end();
+    });
+    if (touches)
+      marginalizer.addFactor(std::make_unique<LinearFactor>(A[i], b[i]), nullptr,
+                             pointers(i, reduced));
+    else
+      untouched.push_back(i);
+  }
+  const auto prior = marginalizer.marginalize(remove);
+  ASSERT_NE(prior, nullptr);
+  ceres::Problem problem_reduced;
+  problem_reduced.AddResidualBlock(new MarginalizationFactor(prior), nullptr, prior->blocks);
+  for (size_t i : untouched)
+    problem_reduced.AddResidualBlock(new LinearFactor(A[i], b[i]), nullptr, pointers(i, reduced));
+  ceres::Solve(options, &problem_reduced, &summary);
+  ASSERT_TRUE(summary.IsSolutionUsable());
+  for (size_t k = 0; k < x.size(); ++k) {
+    if (std::find(removed.begin(), removed.end(), k) != removed.end()) continue;
+    for (size_t i = 0; i < x[k].size(); ++i) EXPECT_NEAR(reduced[k][i], full[k][i], 1e-8);
+  }
+}
+
+TEST(Marginalization, ExactWithScalarBlocksEliminatedByDivision) {
+  // x0 (3, a "pose") and x1..x4 (scalars, "inverse depths": each in factors with x0 and the kept
+  // x5, x6, never with another scalar) are removed; x5, x6 (sizes 3, 2) are kept.
+  const std::vector<std::vector<double>> x = {{0.1, 0.2, 0.3},  {1},        {2}, {0.5}, {-1},
+                                              {0.3, -0.2, 0.4}, {1.5, -0.5}};
+  expectExactElimination({{0},
+                          {0, 5},
+                          {0, 1, 5},
+                          {1, 6},
+                          {0, 2, 6},
+                          {2, 5},
+                          {0, 3, 5},
+                          {3, 6},
+                          {0, 4, 6},
+                          {4, 5, 6},
+                          {5, 6},
+                          {6}},
+                         x, {0, 1, 2, 3, 4});
+}
+
+TEST(Marginalization, ExactWhenRemovedScalarsShareAFactor) {
+  // x1 and x2 share a factor: their block is not diagonal, all go through the pseudo-inverse.
+  const std::vector<std::vector<double>> x = {{0.1, 0.2, 0.3}, {1}, {2}, {0.3, -0.2, 0.4}};
+  expectExactElimination({{0}, {0, 1, 3}, {1, 2}, {0, 2, 3}, {2, 3}, {3}}, x, {0, 1, 2});
 }
 
 std::vector<double> pose(const Eigen::Vector3d& p, const Eigen::Quaterniond& q) {
