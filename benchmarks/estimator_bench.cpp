@@ -1,5 +1,5 @@
 // Per-frame time of the sliding-window estimator without the images: 20 s of simulated C4
-// (640x480, 20 Hz, plane masks) tracked once with a mode's front-end settings, then fed with the
+// (640x480, 20 Hz) tracked once with a mode's front-end settings (masks or none), then fed with the
 // simulator's IMU to the estimator with that mode's settings (config/<mode>.ini), and the batch
 // refinement at the end. The front-end's time on such frames is bench_frontend's.
 // Run from the repository root: build/bin/bench_estimator --benchmark_repetitions=3
@@ -99,9 +99,11 @@ void runEstimator(benchmark::State& state, const std::string& mode) {
 void BM_EstimatorRpvioSingle(benchmark::State& state) { runEstimator(state, "rpvio-single"); }
 void BM_EstimatorRpvioMulti(benchmark::State& state) { runEstimator(state, "rpvio-multi"); }
 void BM_EstimatorMaskVins(benchmark::State& state) { runEstimator(state, "mask-vins"); }
+void BM_EstimatorVinsMono(benchmark::State& state) { runEstimator(state, "vins-mono"); }
 BENCHMARK(BM_EstimatorRpvioSingle)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 BENCHMARK(BM_EstimatorRpvioMulti)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 BENCHMARK(BM_EstimatorMaskVins)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+BENCHMARK(BM_EstimatorVinsMono)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 
 }  // namespace
 
