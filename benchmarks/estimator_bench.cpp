@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <chrono>
 #include <map>
-#include <opencv2/core/utility.hpp>
 #include <string>
 
 #include "common/ini_file.h"
@@ -106,12 +105,3 @@ BENCHMARK(BM_EstimatorMaskVins)->Unit(benchmark::kMillisecond)->UseRealTime()->I
 BENCHMARK(BM_EstimatorVinsMono)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 
 }  // namespace
-
-int main(int argc, char** argv) {
-  cv::setNumThreads(1);  // one core, as rpvio-slam runs by default
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}

@@ -3,7 +3,6 @@
 #include <benchmark/benchmark.h>
 #include <algorithm>
 #include <chrono>
-#include <opencv2/core/utility.hpp>
 
 #include "mrpt_modules/frontend/feature_tracker.h"
 #include "sim/simulator.h"
@@ -72,12 +71,3 @@ BENCHMARK(BM_FrontendPlaneMasksHalfResolutionCorners)->Unit(benchmark::kMillisec
 BENCHMARK(BM_FrontendPlaneMasksOneSpacing)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
-
-int main(int argc, char** argv) {
-  cv::setNumThreads(1);  // one core, as rpvio-slam runs by default
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}

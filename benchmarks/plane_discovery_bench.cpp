@@ -7,7 +7,6 @@
 #include <benchmark/benchmark.h>
 #include <algorithm>
 #include <chrono>
-#include <opencv2/core/utility.hpp>
 
 #include "mrpt_modules/estimator/plane_discovery.h"
 #include "mrpt_modules/frontend/feature_tracker.h"
@@ -71,12 +70,3 @@ void BM_PlaneDiscovery(benchmark::State& state) {
 BENCHMARK(BM_PlaneDiscovery)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
-
-int main(int argc, char** argv) {
-  cv::setNumThreads(1);
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}
