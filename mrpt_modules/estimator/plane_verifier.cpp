@@ -87,7 +87,10 @@ FeatureFrame PlaneVerifier::filter(const FeatureFrame& frame,
     }
   }
   history_.trim(options_.span_s);
+  return withoutRejected(frame);
+}
 
+FeatureFrame PlaneVerifier::withoutRejected(const FeatureFrame& frame) const {
   FeatureFrame kept = frame;
   if (!rejected_.empty())
     kept.features.erase(

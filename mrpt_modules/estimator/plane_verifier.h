@@ -48,6 +48,10 @@ class PlaneVerifier {
   FeatureFrame filter(const FeatureFrame& frame,
                       const std::optional<Eigen::Quaterniond>& R_previous_current);
 
+  /// A frame given earlier without the features of the planes rejected since (the initializer's
+  /// buffered frames, screened again).
+  FeatureFrame withoutRejected(const FeatureFrame& frame) const;
+
   const std::vector<PlaneRejection>& rejections() const { return rejections_; }
   const std::set<int>& rejected() const { return rejected_; }
 

@@ -42,9 +42,12 @@ SlidingWindowEstimator::SlidingWindowEstimator(const Calibration& calibration,
       plane_discovery_(options.planeDiscoveryOptions()),
       map_(map) {
   setPoseBlock(calib_.T_BC, mount_);
+  // While initializing, the labels discovered since and the planes rejected since reach back
+  // over the buffered frames.
   if (options_.discover_planes)
-    bootstrapper_.setFrameScreen(
-        [this](const FeatureFrame& f) { return plane_discovery_.labelled(f); });
+    bootstrapper_.setFrameScreen([this](const FeatureFrame& f) {
+      return plane_verifier_.withoutRejected(plane_discovery_.labelled(f));
+    });
 }
 
 Eigen::Isometry3d SlidingWindowEstimator::camera(uint64_t frame_id) const {

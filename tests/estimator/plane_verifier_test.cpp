@@ -1,11 +1,12 @@
 // PlaneVerifier on exact geometry with tracker-like noise: a camera turning and moving sideways
 // past a wall and a floor (static) and a panel driving towards it (moving); the panel is rejected
 // within a second, the static planes never; a panel moving along the camera's own translation
-// keeps its epipoles and is not (the documented limit).
+// keeps its epipoles and is not (the documented limit). Frames given earlier are screened again.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
+#include <set>
 
 #include "mrpt_modules/estimator/plane_verifier.h"
 #include "tests/estimator/wall_floor_panel_scene.h"
@@ -56,6 +57,25 @@ TEST(PlaneVerifier, APanelDrivingTowardsTheCameraIsRejectedTheWallAndFloorAreNot
   // First check at 0.3 s, rejected on the third disagreement.
   EXPECT_LE(verifier.rejections()[0].t, 0.45 + 1e-9);
   EXPECT_GT(verifier.rejections()[0].error_px, 1.0);
+}
+
+TEST(PlaneVerifier, AFrameGivenBeforeTheRejectionIsScreenedAgain) {
+  FeatureFrame earlier;
+  for (const int plane : {kWall, kFloor, kPanel}) {
+    TrackedFeature f;
+    f.id = plane;
+    f.plane_id = plane;
+    earlier.features.push_back(f);
+  }
+  const auto planes = [](const FeatureFrame& f) {
+    std::set<int> out;
+    for (const TrackedFeature& x : f.features) out.insert(x.plane_id);
+    return out;
+  };
+  EXPECT_EQ(planes(run(Eigen::Vector3d(0, 0, -1.0)).withoutRejected(earlier)),
+            (std::set<int>{kWall, kFloor}));
+  EXPECT_EQ(planes(run(Eigen::Vector3d::Zero()).withoutRejected(earlier)),
+            (std::set<int>{kWall, kFloor, kPanel}));
 }
 
 TEST(PlaneVerifier, StaticPanelIsKept) {
