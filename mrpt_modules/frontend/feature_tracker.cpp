@@ -13,6 +13,7 @@
 
 #include "common/input_error.h"
 #include "mrpt_modules/frontend/homography_ransac.h"
+#include "mrpt_modules/frontend/local_image_motion.h"
 #include "mrpt_modules/frontend/point_undistortion.h"
 #include "mrpt_modules/frontend/warped_template_alignment.h"
 #include "rawlog_io/uniform_plane_region.h"
@@ -45,37 +46,6 @@ std::array<bool, 256> labelsIn(const cv::Mat& mask) {
     for (int u = 0; u < mask.cols; ++u) labelled[row[u]] = true;
   }
   return labelled;
-}
-
-/// A track's motion between the previous frame and this one (px).
-struct PixelMotion {
-  cv::Point2f from, to;
-};
-
-/// The local affine map (2x2) of the image motion around `motions[i]`, least squares over its
-/// nearest neighbours' displacements relative to its own: where no plane homography is known, it
-/// stands for the Jacobian of the surface's homography (the surface is smooth at the scale of the
-/// neighbourhood). None with fewer than three neighbours within reach.
-std::optional<cv::Matx22d> localImageMotion(const std::vector<PixelMotion>& motions, size_t i,
-                                            size_t neighbours, double reach_px) {
-  std::vector<std::pair<double, size_t>> near;
-  for (size_t k = 0; k < motions.size(); ++k) {
-    const double d = cv::norm(motions[k].from - motions[i].from);
-    if (k != i && d < reach_px) near.push_back({d, k});
-  }
-  if (near.size() < 3) return std::nullopt;
-  const size_t n = std::min(near.size(), neighbours);
-  std::partial_sort(near.begin(), near.begin() + n, near.end());
-  cv::Matx22d moved_from = cv::Matx22d::zeros(), from_from = cv::Matx22d::zeros();
-  for (size_t k = 0; k < n; ++k) {
-    const PixelMotion& m = motions[near[k].second];
-    const cv::Vec2d a(m.from.x - motions[i].from.x, m.from.y - motions[i].from.y);
-    const cv::Vec2d b(m.to.x - motions[i].to.x, m.to.y - motions[i].to.y);
-    moved_from += b * a.t();
-    from_from += a * a.t();
-  }
-  if (cv::determinant(from_from) < 1e-6) return std::nullopt;
-  return moved_from * from_from.inv();
 }
 
 }  // namespace

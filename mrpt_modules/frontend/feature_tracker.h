@@ -58,7 +58,7 @@ struct TrackerOptions {
   double max_warp_scale = 3.0;  // a track ends when its warp stretches or shrinks more than this
   // Without masks, a track's birth patch is warped by the local affine motion of its 8 nearest
   // neighbours (within 4 min_distance) instead of not at all: surfaces seen at an angle keep
-  // their tracks as the view changes (feature_tracker.cpp, localImageMotion).
+  // their tracks as the view changes (local_image_motion.h).
   bool local_warps = true;
   // Corners are detected on this pyramid level (0 = full resolution; 1 = half, 4x cheaper).
   int detection_level = 0;
