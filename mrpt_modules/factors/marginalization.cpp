@@ -113,7 +113,7 @@ std::shared_ptr<const MarginalizationPrior> Marginalizer::marginalize(
   for (double* b : removed) offset[b] = m, m += tangentSize(size_of[b]);
   n = m;
   for (double* b : kept) offset[b] = n, n += tangentSize(size_of[b]);
-  const int k_size = n - m;
+  const int kept_size = n - m;
 
   Eigen::MatrixXd H = Eigen::MatrixXd::Zero(n, n);
   Eigen::VectorXd g = Eigen::VectorXd::Zero(n);
@@ -173,24 +173,25 @@ std::shared_ptr<const MarginalizationPrior> Marginalizer::marginalize(
     rest.insert(rest.end(), scalar.begin(), scalar.end());
     scalar.clear();
   }
-  m = static_cast<int>(rest.size());
-  for (int i = n - k_size; i < n; ++i) rest.push_back(i);
+  const int m_rest = static_cast<int>(rest.size());
+  for (int i = n - kept_size; i < n; ++i) rest.push_back(i);
   const Eigen::VectorXd D_inv = H(scalar, scalar).diagonal().cwiseInverse();
   const Eigen::MatrixXd H_rs = H(rest, scalar);
   const Eigen::MatrixXd H_r = H(rest, rest) - H_rs * D_inv.asDiagonal() * H_rs.transpose();
   const Eigen::VectorXd g_r = g(rest) - H_rs * D_inv.asDiagonal() * g(scalar);
 
   // Schur complement: H* = Hkk − Hkm Hmm⁻¹ Hmk, g* = gk − Hkm Hmm⁻¹ gm (Hmm⁻¹ pseudo-inverse).
-  const Eigen::MatrixXd Hmm = 0.5 * (H_r.topLeftCorner(m, m) + H_r.topLeftCorner(m, m).transpose());
+  const Eigen::MatrixXd Hmm =
+      0.5 * (H_r.topLeftCorner(m_rest, m_rest) + H_r.topLeftCorner(m_rest, m_rest).transpose());
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig_m(Hmm);
   const Eigen::VectorXd inv_values =
       (eig_m.eigenvalues().array() > eps).select(eig_m.eigenvalues().array().inverse(), 0);
   const Eigen::MatrixXd Hmm_inv =
       eig_m.eigenvectors() * inv_values.asDiagonal() * eig_m.eigenvectors().transpose();
-  const int k = k_size;
-  const Eigen::MatrixXd Hkm = H_r.block(m, 0, k, m);
-  const Eigen::MatrixXd H_prior = H_r.bottomRightCorner(k, k) - Hkm * Hmm_inv * Hkm.transpose();
-  const Eigen::VectorXd g_prior = g_r.tail(k) - Hkm * Hmm_inv * g_r.head(m);
+  const Eigen::MatrixXd Hkm = H_r.bottomLeftCorner(kept_size, m_rest);
+  const Eigen::MatrixXd H_prior =
+      H_r.bottomRightCorner(kept_size, kept_size) - Hkm * Hmm_inv * Hkm.transpose();
+  const Eigen::VectorXd g_prior = g_r.tail(kept_size) - Hkm * Hmm_inv * g_r.head(m_rest);
 
   // H* = Jᵀ J and g* = Jᵀ r0: J = S^½ Vᵀ, r0 = S^-½ Vᵀ g* over the well-determined directions.
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(0.5 * (H_prior + H_prior.transpose()));

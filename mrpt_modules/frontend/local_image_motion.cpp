@@ -1,6 +1,7 @@
 #include "mrpt_modules/frontend/local_image_motion.h"
 
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
 namespace rpvio {
@@ -25,7 +26,8 @@ std::optional<cv::Matx22d> localImageMotion(const std::vector<PixelMotion>& moti
   }
   // Eigenvalues of the 2x2 scatter: λ = tr/2 ± √(tr²/4 − det).
   const double half_trace = 0.5 * cv::trace(from_from);
-  const double root = std::sqrt(std::max(0.0, half_trace * half_trace - cv::determinant(from_from)));
+  const double root =
+      std::sqrt(std::max(0.0, half_trace * half_trace - cv::determinant(from_from)));
   const double largest = half_trace + root, smallest = half_trace - root;
   if (largest <= 0 || smallest < kMinNeighbourSpreadRatio * largest) return std::nullopt;
   return moved_from * from_from.inv();
