@@ -110,9 +110,7 @@ bool BatchRefinement::solve() {
     if (known) ++tracks_of_plane[plane];
   }
   size_t reprojections = 0, homographies = 0;
-  std::vector<double*> depths;
   for (auto& [track, plane] : usable) {
-    depths.push_back(track->inv_depth);
     const TrackObservation& anchor = track->observations.front();
     PlaneEstimate* p = plane > 0 && tracks_of_plane[plane] >= options_.min_plane_tracks
                            ? &planes_[plane]
@@ -141,7 +139,6 @@ bool BatchRefinement::solve() {
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::SPARSE_SCHUR;
   solver.max_num_iterations = options_.max_iterations;
-  solver.linear_solver_ordering = solve_problem.depthsEliminated(depths);
   solver.num_threads = 1;
   ceres::Solver::Summary summary;
   ceres::Solve(solver, &problem, &summary);
