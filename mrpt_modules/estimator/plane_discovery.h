@@ -17,9 +17,9 @@
 //     removes its features and repeats.
 //  3. Planes found in a check are matched to the segments of earlier checks by their features'
 //     labels (the segment most of them carry, if at least a third of the plane's features do),
-//     else start a new segment. A segment
-//     becomes a static plane once found in confirm_after checks; it is rejected as moving once
-//     most of its features were off their epipolar lines in reject_after consecutive checks.
+//     else start a new segment. A segment becomes a static plane once found in confirm_after
+//     checks; it is rejected as moving once most of its features were off their epipolar lines
+//     in reject_after consecutive checks.
 // Discovered planes get labels from kFirstDiscoveredLabel on (mask labels are 8-bit): the map
 // tells their origin.
 #include <Eigen/Geometry>

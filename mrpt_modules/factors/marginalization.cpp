@@ -169,13 +169,15 @@ std::shared_ptr<const MarginalizationPrior> Marginalizer::marginalize(
     else
       for (int i = o; i < o + size; ++i) rest.push_back(i);
   }
-  if (!Eigen::MatrixXd(H(scalar, scalar)).isDiagonal(0.0)) {  // linked: all by pseudo-inverse
+  Eigen::MatrixXd H_ss = H(scalar, scalar);
+  if (!H_ss.isDiagonal(0.0)) {  // linked: all by pseudo-inverse
     rest.insert(rest.end(), scalar.begin(), scalar.end());
     scalar.clear();
+    H_ss.resize(0, 0);
   }
   const int m_rest = static_cast<int>(rest.size());
   for (int i = n - kept_size; i < n; ++i) rest.push_back(i);
-  const Eigen::VectorXd D_inv = H(scalar, scalar).diagonal().cwiseInverse();
+  const Eigen::VectorXd D_inv = H_ss.diagonal().cwiseInverse();
   const Eigen::MatrixXd H_rs = H(rest, scalar);
   const Eigen::MatrixXd H_r = H(rest, rest) - H_rs * D_inv.asDiagonal() * H_rs.transpose();
   const Eigen::VectorXd g_r = g(rest) - H_rs * D_inv.asDiagonal() * g(scalar);
