@@ -63,37 +63,37 @@ BatchRefinement::BatchRefinement(KeyframeArchive& archive, const double* mount,
   std::copy(mount, mount + 7, mount_);
 }
 
+namespace {
+
+/// Every parameter block of the refinement in one array, in a fixed order: the mount, each
+/// keyframe's pose and speed/bias, the planes, then the tracks' inverse depths. Ceres keeps the
+/// blocks of a Schur ordering group in address order; in one array that order is this one, so the
+/// solution does not depend on where the archive's blocks happen to live on the heap.
+class ContiguousBlocks {
+ public:
+  explicit ContiguousBlocks(size_t size) : values_(size) {}
+  /// The next `size` values, starting as a copy of `start`.
+  double* take(const double* start, size_t size) {
+    double* block = values_.data() + used_;
+    std::copy(start, start + size, block);
+    used_ += size;
+    return block;
+  }
+
+ private:
+  std::vector<double> values_;
+  size_t used_ = 0;
+};
+
+}  // namespace
+
 bool BatchRefinement::solve() {
   auto& keyframes = archive_.keyframes_;
   if (keyframes.size() < 2) return false;
   const Eigen::Isometry3d T_BC = poseIsometry(mount_);
-  std::map<uint64_t, double*> pose_of;
   std::map<uint64_t, Eigen::Isometry3d> cameras;
-  for (auto& k : keyframes) {
-    pose_of[k.id] = k.pose;
-    cameras[k.id] = poseIsometry(k.pose) * T_BC;
-  }
+  for (auto& k : keyframes) cameras[k.id] = poseIsometry(k.pose) * T_BC;
   const CameraPoseLookup lookup = [&](uint64_t id) { return cameras.at(id); };
-
-  EstimatorProblem solve_problem(mount_, options_.cauchy_scale);
-  ceres::Problem& problem = solve_problem.problem;
-  const Eigen::Vector3d g(0, 0, -options_.gravity);
-  // Gauge: the first keyframe of every IMU-chained segment keeps its position and yaw (the IMU
-  // observes its tilt).
-  bool segment_start = true;
-  for (size_t i = 0; i < keyframes.size(); ++i) {
-    auto& k = keyframes[i];
-    problem.AddParameterBlock(k.pose, 7, &solve_problem.pose_manifold);
-    problem.AddParameterBlock(k.speed_bias, 9);
-    if (segment_start) {
-      problem.SetManifold(k.pose, &solve_problem.gauge_manifold);
-      ++segments_;
-    }
-    segment_start = !k.to_next || i + 1 == keyframes.size();
-    if (!segment_start)
-      problem.AddResidualBlock(new ImuFactor(k.to_next, g), nullptr, k.pose, k.speed_bias,
-                               keyframes[i + 1].pose, keyframes[i + 1].speed_bias);
-  }
 
   // Tracks with their depth; planes with enough tracks get homography factors.
   std::map<int, size_t> tracks_of_plane;
@@ -109,48 +109,104 @@ bool BatchRefinement::solve() {
     usable.emplace_back(&track, known ? plane : 0);
     if (known) ++tracks_of_plane[plane];
   }
+  std::vector<int> solved_planes;
+  for (const auto& [plane, count] : tracks_of_plane)
+    if (count >= options_.min_plane_tracks) solved_planes.push_back(plane);
+
+  ContiguousBlocks blocks(7 + 16 * keyframes.size() + 4 * solved_planes.size() + usable.size());
+  double* mount = blocks.take(mount_, 7);
+  std::map<uint64_t, double*> pose_of;
+  std::vector<double*> speed_bias;
+  for (auto& k : keyframes) {
+    pose_of[k.id] = blocks.take(k.pose, 7);
+    speed_bias.push_back(blocks.take(k.speed_bias, 9));
+  }
+  std::map<int, std::pair<double*, double*>> plane_blocks;  // normal, distance
+  for (int plane : solved_planes)
+    plane_blocks[plane] = {blocks.take(planes_[plane].normal, 3),
+                           blocks.take(planes_[plane].distance, 1)};
+  std::vector<double*> depths;
+  for (auto& [track, plane] : usable) depths.push_back(blocks.take(track->inv_depth, 1));
+
+  EstimatorProblem solve_problem(mount, options_.cauchy_scale);
+  ceres::Problem& problem = solve_problem.problem;
+  const Eigen::Vector3d g(0, 0, -options_.gravity);
+  // Gauge: the first keyframe of every IMU-chained segment keeps its position and yaw (the IMU
+  // observes its tilt).
+  bool segment_start = true;
+  for (size_t i = 0; i < keyframes.size(); ++i) {
+    const auto& k = keyframes[i];
+    double* pose = pose_of[k.id];
+    problem.AddParameterBlock(pose, 7, &solve_problem.pose_manifold);
+    problem.AddParameterBlock(speed_bias[i], 9);
+    if (segment_start) {
+      problem.SetManifold(pose, &solve_problem.gauge_manifold);
+      ++segments_;
+    }
+    segment_start = !k.to_next || i + 1 == keyframes.size();
+    if (!segment_start)
+      problem.AddResidualBlock(new ImuFactor(k.to_next, g), nullptr, pose, speed_bias[i],
+                               pose_of[keyframes[i + 1].id], speed_bias[i + 1]);
+  }
   size_t reprojections = 0, homographies = 0;
-  for (auto& [track, plane] : usable) {
+  for (size_t j = 0; j < usable.size(); ++j) {
+    const auto& [track, plane] = usable[j];
     const TrackObservation& anchor = track->observations.front();
-    PlaneEstimate* p = plane > 0 && tracks_of_plane[plane] >= options_.min_plane_tracks
-                           ? &planes_[plane]
-                           : nullptr;
+    const auto p = plane_blocks.find(plane);
     for (size_t k = 1; k < track->observations.size(); ++k) {
       const TrackObservation& o = track->observations[k];
       problem.AddResidualBlock(
           ReprojectionResidual::create(anchor.normalized, o.normalized, options_.weight),
-          &solve_problem.loss, pose_of[anchor.frame], pose_of[o.frame], mount_, track->inv_depth);
+          &solve_problem.loss, pose_of[anchor.frame], pose_of[o.frame], mount, depths[j]);
       ++reprojections;
-      if (!p) continue;
+      if (p == plane_blocks.end()) continue;
       problem.AddResidualBlock(
           HomographyResidual::create(anchor.normalized, o.normalized, options_.weight),
-          &solve_problem.loss, pose_of[anchor.frame], pose_of[o.frame], mount_, p->normal,
-          p->distance);
+          &solve_problem.loss, pose_of[anchor.frame], pose_of[o.frame], mount, p->second.first,
+          p->second.second);
       ++homographies;
     }
   }
-  size_t planes = 0;
-  for (auto& [id, p] : planes_)
-    if (problem.HasParameterBlock(p.normal)) {
-      problem.SetManifold(p.normal, &solve_problem.sphere);
-      ++planes;
-    }
+  for (const auto& [plane, block] : plane_blocks)
+    problem.SetManifold(block.first, &solve_problem.sphere);
 
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::SPARSE_SCHUR;
   solver.max_num_iterations = options_.max_iterations;
+  // Eliminate the inverse depths only. Left to Ceres, the eliminated independent set also took
+  // IMU speed/bias blocks, whose elimination fills the reduced system: 3x slower on an 80 s
+  // sequence (docs/notes/2026-11-28-speed.md).
+  solver.linear_solver_ordering = std::make_shared<ceres::ParameterBlockOrdering>();
+  for (double* depth : depths) solver.linear_solver_ordering->AddElementToGroup(depth, 0);
+  std::vector<double*> all_blocks;
+  problem.GetParameterBlocks(&all_blocks);
+  for (double* block : all_blocks)
+    if (!solver.linear_solver_ordering->IsMember(block))
+      solver.linear_solver_ordering->AddElementToGroup(block, 1);
   solver.num_threads = 1;
   ceres::Solver::Summary summary;
   ceres::Solve(solver, &problem, &summary);
   std::ostringstream out;
   out << "batch refinement: " << keyframes.size() << " keyframes in " << segments_
-      << " IMU-chained segment(s), " << usable.size() << " tracks, " << planes << " planes, "
-      << reprojections << " reprojection and " << homographies << " homography factors; cost "
-      << summary.initial_cost << " -> " << summary.final_cost << " in " << summary.iterations.size()
-      << " iterations, " << summary.total_time_in_seconds << " s";
+      << " IMU-chained segment(s), " << usable.size() << " tracks, " << plane_blocks.size()
+      << " planes, " << reprojections << " reprojection and " << homographies
+      << " homography factors; cost " << summary.initial_cost << " -> " << summary.final_cost
+      << " in " << summary.iterations.size() << " iterations, " << summary.total_time_in_seconds
+      << " s";
   report_ = out.str();
   seconds_ = summary.total_time_in_seconds;
-  return summary.IsSolutionUsable();
+  if (!summary.IsSolutionUsable()) return false;
+  for (size_t i = 0; i < keyframes.size(); ++i) {
+    const double* pose = pose_of[keyframes[i].id];
+    std::copy(pose, pose + 7, keyframes[i].pose);
+    std::copy(speed_bias[i], speed_bias[i] + 9, keyframes[i].speed_bias);
+  }
+  for (const auto& [plane, block] : plane_blocks) {
+    std::copy(block.first, block.first + 3, planes_[plane].normal);
+    planes_[plane].distance[0] = block.second[0];
+  }
+  for (size_t j = 0; j < usable.size(); ++j) usable[j].first->inv_depth[0] = depths[j][0];
+  return true;
 }
 
 }  // namespace rpvio

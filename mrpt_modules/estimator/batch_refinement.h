@@ -55,8 +55,8 @@ class KeyframeArchive {
 
  private:
   friend class BatchRefinement;
-  std::deque<ArchivedKeyframe> keyframes_;  // deque: stable addresses for the solver
-  std::map<int, FeatureTrack> tracks_;      // by feature id; observations on keyframe ids
+  std::deque<ArchivedKeyframe> keyframes_;
+  std::map<int, FeatureTrack> tracks_;  // by feature id; observations on keyframe ids
 };
 
 struct BatchRefinementOptions {
@@ -75,7 +75,8 @@ class BatchRefinement {
   BatchRefinement(KeyframeArchive& archive, const double* mount,
                   const std::function<int(int)>& plane_of_label,
                   std::map<int, PlaneEstimate>& planes, const BatchRefinementOptions& options);
-  /// Solves, in place (archive and planes); false when the solution is not usable.
+  /// Solves; when the solution is usable, writes it into the archive and the planes, else
+  /// returns false and leaves them as they were.
   bool solve();
   /// Summary line for the log.
   const std::string& report() const { return report_; }
