@@ -190,10 +190,12 @@ double Bootstrapper::significantTimeOffset(const InitializationResult& init) {
   }
   const bool significant =
       std::abs(e->td) >= options_.min_time_offset_s && std::abs(e->td) > 3 * e->sigma;
-  char text[160];
+  char text[200];
   std::snprintf(text, sizeof text,
-                "time offset %+.1f ms (sigma %.1f ms, %zu frames, fit %.4f deg)%s", 1e3 * e->td,
-                1e3 * e->sigma, e->frames, e->rms_deg, significant ? "" : ": not applied");
+                "time offset %+.1f ms (sigma %.1f ms, %zu frames, fit %.4f deg, residual "
+                "correlation %.2f)%s",
+                1e3 * e->td, 1e3 * e->sigma, e->frames, e->rms_deg, e->residual_correlation,
+                significant ? "" : ": not applied");
   time_offset_note_ = text;
   return significant ? e->td : 0;
 }

@@ -72,9 +72,9 @@ struct EstimatorOptions {
                                    // they span less than init_window_s)
   // Camera-IMU time offset, estimated once from the first initialization window's rotations
   // (time_offset.h), searched within ±max_time_offset_s. When at least min_time_offset_s and 3
-  // sigma, the window is initialized again on the corrected frame times, and the correction kept
-  // if that succeeds (docs/notes/2026-11-25-faults-and-sanitizers.md: what it estimates on the
-  // simulator).
+  // sigma (sigma allowing for the residuals' correlation), the window is initialized again on the
+  // corrected frame times, and the correction kept if that succeeds
+  // (docs/notes/2026-11-28-time-offset-guard.md: what it estimates on the simulator).
   bool estimate_time_offset = true;
   double min_time_offset_s = 0.010;
   double max_time_offset_s = 0.05;

@@ -17,7 +17,9 @@ namespace rpvio {
 
 struct TimeOffsetEstimate {
   double td = 0;     // s, to add to the frame times (t_imu = t_frame + td)
-  double sigma = 0;  // s, standard deviation (residual variance times (JᵀJ)⁻¹)
+  double sigma = 0;  // s, standard deviation: residual variance times (JᵀJ)⁻¹, inflated for
+                     // the residuals' correlation from frame to frame (AR(1), time_offset.cpp)
+  double residual_correlation = 0;  // ρ, lag-1 autocorrelation of the rotation residuals
   Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();
   double rms_deg = 0;  // rotation residual per frame
   size_t frames = 0;   // frames whose shifted interval the samples cover
