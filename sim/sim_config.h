@@ -65,8 +65,11 @@ struct SimConfig {
   }
 
   static ImuBiasState defaultInitialBias();
-  /// The built-in profiles: "paper" (the defaults: the paper's RPVIO-Sim warehouse) and "hard"
-  /// (a lower flight through a crowd that fills the view, CNN-like masks; docs/configuration.md).
+  /// `base` (the defaults, profile_name set) with the motion of that platform.
+  static SimConfig platform(SimConfig base);
+  /// The built-in profiles: "paper" (the defaults: the paper's RPVIO-Sim warehouse), "hard"
+  /// (a lower flight through a crowd that fills the view, CNN-like masks) and the platforms'
+  /// motions "handheld", "drone", "ground-robot" and "car" (docs/configuration.md).
   /// Throws std::invalid_argument on another name.
   static SimConfig profile(const std::string& name);
   /// `base` with the keys of an INI file over it. Throws InputError naming the file and line on a

@@ -25,7 +25,7 @@ namespace rpvio::apps {
 namespace {
 
 const char* kUsage =
-    "usage: rpvio-bench --suite DIR [--generate] [--profile paper|hard] [--duration SEC] [--seed "
+    "usage: rpvio-bench --suite DIR [--generate] [--profile P] [--duration SEC] [--seed "
     "S]\n"
     "                   [--modes vins-mono,mask-vins,rpvio-single,rpvio-multi,rpvio-auto]\n"
     "                   [--sequences static,C1,C2,C4,C6,C8] [--runs N] [--jobs J]\n"

@@ -7,6 +7,7 @@
 #include "common/atomic_file.h"
 #include "common/input_error.h"
 #include "sim/sequence_name.h"
+#include "sim/sim_config.h"
 
 namespace fs = std::filesystem;
 
@@ -78,8 +79,11 @@ BenchPlan planFrom(const CommandLine& cli) {
   plan.config_dir = fs::absolute(cli.valueOr("config-dir", "config")).lexically_normal();
   setup.modes = cli.has("modes") ? splitList(cli.value("modes")) : kModes;
   const std::string profile = cli.valueOr("profile", "paper");
-  if (profile != "paper" && profile != "hard")
-    throw UsageError("--profile must be paper or hard, not '" + profile + "'");
+  try {
+    sim::SimConfig::profile(profile);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--profile: ") + e.what());
+  }
   setup.sequences =
       cli.has("sequences") ? splitList(cli.value("sequences")) : sim::suiteSequences(profile);
   setup.runs = cli.count("runs", 1);

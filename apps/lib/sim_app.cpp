@@ -19,9 +19,9 @@ namespace rpvio::apps {
 namespace {
 
 const char* kUsage =
-    "usage: rpvio-sim --characters N | --sequence NAME [--profile paper|hard] [--seed S]\n"
+    "usage: rpvio-sim --characters N | --sequence NAME [--profile P] [--seed S]\n"
     "                 [--duration SEC] [--time-offset SEC] [--config INI] --out DIR\n"
-    "       rpvio-sim --suite [--profile paper|hard] [--seed S] [--duration SEC] [--config INI]\n"
+    "       rpvio-sim --suite [--profile P] [--seed S] [--duration SEC] [--config INI]\n"
     "                 --out DIR\n"
     "       rpvio-sim --preview [--profile P] [--characters N] [--time SEC] [--config INI]\n"
     "                 --out FILE.png\n"
@@ -35,9 +35,12 @@ const char* kUsage =
     "  moving planar objects), MP-C<N> (both). --suite writes DIR/{static,C1,C2,C4,C6,C8}/ with "
     "the\n"
     "  same seed, and with --profile hard also DIR/MP/ and DIR/MP-C4/.\n"
-    "  --profile: paper (default; the paper's RPVIO-Sim warehouse) or hard (a crowd that fills\n"
-    "  the view, CNN-like masks); --config INI overrides keys of the profile (every key:\n"
-    "  config/sim/warehouse.ini and docs/configuration.md).\n"
+    "  --profile: paper (default; the paper's RPVIO-Sim warehouse), hard (a crowd that fills\n"
+    "  the view, CNN-like masks), or a platform's motion: handheld (30 Hz, 1280x720, head\n"
+    "  turns up to 3 rad/s), drone (5 m/s, yaw turns of 2 rad/s), ground-robot (30 Hz,\n"
+    "  848x480, planar at 0.5-1 m/s) or car (10 Hz, 1241x376, 0-10 m/s and a 90 deg turn);\n"
+    "  --config INI overrides keys of the profile (every key: config/sim/warehouse.ini and\n"
+    "  docs/configuration.md).\n"
     "  Fault injection (off by default; times in s of the sequence, intervals START:DURATION,\n"
     "  each option may repeat):\n"
     "    --drop-frame T        the frame nearest to T is lost\n"
