@@ -48,6 +48,9 @@ std::optional<InitializedWindow> Bootstrapper::addFrame(
   if (buffer_.size() > options_.init_window_frames &&
       buffer_.back().first.t - buffer_[1].first.t >= options_.init_window_s - 1e-6)
     buffer_.pop_front();
+  // An attempt that failed as far as the geometry or the alignment (0.1–0.9 s of structure from
+  // motion and bundle adjustment) is not repeated before the window has moved by init_retry_s.
+  if (frame.t < next_attempt_t_) return std::nullopt;
   auto window = tryInitialize();
   if (window) buffer_.clear();
   return window;
@@ -63,6 +66,7 @@ void Bootstrapper::restart(const std::vector<ImuSample>& imu_since_good,
                            const std::string& status) {
   buffer_.clear();
   first_geometry_failure_t_ = -1;
+  next_attempt_t_ = -INFINITY;
   imu_since_good_ = imu_since_good;
   status_ = status_detail_ = status;
 }
@@ -91,6 +95,11 @@ std::optional<InitializedWindow> Bootstrapper::tryInitialize() {
   }
   status_ = init.ok() ? "tracking" : toString(init.status);
   status_detail_ = init.reason;
+  if (init.status == InitStatus::kTooLittleImuExcitation ||
+      init.status == InitStatus::kGeometryFailed || init.status == InitStatus::kAlignmentRejected) {
+    next_attempt_t_ = frames.back().t + options_.init_retry_s;
+    ++expensive_failures_;
+  }
   if (!init.ok()) return std::nullopt;
   if (options_.estimate_time_offset && !time_offset_estimated_) {
     // A significant camera-IMU offset: the same window again, on the corrected frame times; kept

@@ -4,6 +4,7 @@
 // fails; the re-initializer after a reset), estimates the camera-IMU time offset at the first
 // initialization (and initializes again on the corrected frame times), and places a re-initialized
 // window in the old world by IMU dead reckoning from the last good state.
+#include <cmath>
 #include <deque>
 #include <functional>
 #include <map>
@@ -56,6 +57,9 @@ class Bootstrapper {
   /// After a reset (`status` says why): the buffer starts anew; `imu_since_good` are the samples
   /// since the last good state.
   void restart(const std::vector<ImuSample>& imu_since_good, const std::string& status);
+  /// Attempts that failed in their geometry, structure or alignment (each followed by
+  /// init_retry_s without one).
+  size_t expensiveFailures() const { return expensive_failures_; }
   /// Once per initialized window: the yaw and shift that put its first keyframe (time t, pose) on
   /// the IMU's dead reckoning from the last good state; none (a new world) when there is none or
   /// the IMU does not reach the keyframe. Forgets the last good state either way.
@@ -99,6 +103,8 @@ class Bootstrapper {
   double time_offset_ = 0;
   bool time_offset_estimated_ = false;
   std::string time_offset_note_;
+  double next_attempt_t_ = -INFINITY;  // after an expensive failure (init_retry_s)
+  size_t expensive_failures_ = 0;
   double first_geometry_failure_t_ = -1;   // of the configured initializer (for the fallback)
   std::optional<GoodState> last_good_;     // newest state reported; kept through a reset
   std::vector<ImuSample> imu_since_good_;  // from last_good_ on, while re-initializing

@@ -60,6 +60,7 @@ InitializerOptions EstimatorOptions::initializerOptions() const {
   o.method = initializer;
   o.min_window_s = init_window_s;
   o.min_parallax_px = init_parallax_px;
+  o.max_relative_scale_sigma = init_max_scale_sigma;
   o.virtual_focal = virtual_focal;
   o.pixel_sigma = pixel_sigma;
   return o;

@@ -54,6 +54,12 @@ struct EstimatorOptions {
   InitializerMethod initializer = InitializerMethod::kPlanarHomography;
   double init_window_s = 2.0;
   double init_parallax_px = 30.0;
+  // The alignment's scale standard deviation relative to the scale (from its residual) may be at
+  // most this: above it the window's accelerations do not make the scale observable.
+  double init_max_scale_sigma = 0.03;
+  // After an attempt fails in its geometry or alignment (not for want of frames, features or
+  // parallax, which is cheap to find), the next attempt waits this long (s).
+  double init_retry_s = 0.25;
   // Re-initialization after a reset: mid-flight accelerations make the scale less observable
   // than the take-off, so the alignment's scale may be this uncertain (the window refines it) ...
   double reinit_max_scale_sigma = 0.10;
@@ -136,6 +142,8 @@ struct EstimatorOptions {
     RPVIO_OPTION_CHOICE(v, initializer, kInitializerMethodNames);
     RPVIO_OPTION(v, init_window_s);
     RPVIO_OPTION(v, init_parallax_px);
+    RPVIO_OPTION(v, init_max_scale_sigma);
+    RPVIO_OPTION(v, init_retry_s);
     RPVIO_OPTION(v, init_window_frames);
     RPVIO_OPTION(v, init_fallback);
     RPVIO_OPTION(v, init_fallback_after_s);

@@ -15,6 +15,7 @@
 #include "mrpt_modules/frontend/homography_ransac.h"
 #include "mrpt_modules/frontend/local_image_motion.h"
 #include "mrpt_modules/frontend/point_undistortion.h"
+#include "mrpt_modules/frontend/rotation_prediction.h"
 #include "mrpt_modules/frontend/warped_template_alignment.h"
 #include "rawlog_io/uniform_plane_region.h"
 
@@ -79,7 +80,8 @@ std::vector<std::string> FeatureTracker::takeWarnings() {
 }
 
 std::vector<FeatureTracker::Track> FeatureTracker::propagate(const Pyramid& pyramid,
-                                                             const cv::Mat& mask) {
+                                                             const cv::Mat& mask,
+                                                             const Eigen::Matrix3d* R_cur_prev) {
   std::vector<Track> kept;
   if (tracks_.empty() || previous_pyramid_.empty()) return kept;
   if (previous_pyramid_[0].size() != pyramid[0].size()) {
@@ -93,8 +95,15 @@ std::vector<FeatureTracker::Track> FeatureTracker::propagate(const Pyramid& pyra
   const cv::TermCriteria stop(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 0.003);
   // No error output: OpenCV then skips a pass over every window that computes it (4.7% of the
   // tracker's instructions; the tracks are the same).
+  const bool predict = options_.predict_rotation && R_cur_prev;
+  if (predict) {
+    std::vector<cv::Point2f> normalized;
+    for (const Track& tr : tracks_) normalized.push_back(tr.normalized);
+    to = predictUnderRotation(from, normalized, *R_cur_prev, camera_);
+  }
   cv::calcOpticalFlowPyrLK(previous_pyramid_, pyramid, from, to, status, cv::noArray(), window,
-                           options_.klt_levels, stop, 0, options_.klt_min_eigenvalue);
+                           options_.klt_levels, stop, predict ? cv::OPTFLOW_USE_INITIAL_FLOW : 0,
+                           options_.klt_min_eigenvalue);
   // The backward pass starts where a consistent track must end (its origin), so it needs no
   // coarse level: the full-resolution window converges from a few pixels away, and a track
   // more than max_forward_backward_px inconsistent is rejected anyway.
@@ -293,7 +302,8 @@ FeatureFrame FeatureTracker::publish(double t, double dt) {
   return frame;
 }
 
-FeatureFrame FeatureTracker::track(double t, const cv::Mat& raw_image, const cv::Mat& raw_mask) {
+FeatureFrame FeatureTracker::track(double t, const cv::Mat& raw_image, const cv::Mat& raw_mask,
+                                   const Eigen::Matrix3d* R_cur_prev) {
   const double dt = previous_pyramid_.empty() ? 0 : t - previous_t_;
   cv::Mat image = raw_image, mask = raw_mask;
   bool usable = true;
@@ -321,7 +331,7 @@ FeatureFrame FeatureTracker::track(double t, const cv::Mat& raw_image, const cv:
   computeUniformRegions(mask);
   cv::buildOpticalFlowPyramid(image, pyramid_, cv::Size(options_.klt_window, options_.klt_window),
                               options_.klt_levels, true);
-  std::vector<Track> kept = propagate(pyramid_, mask);
+  std::vector<Track> kept = propagate(pyramid_, mask, R_cur_prev);
   undistort(kept);
   const PlaneHomographies homographies = rejectOutliers(kept);
   if (options_.anchor_refinement) {

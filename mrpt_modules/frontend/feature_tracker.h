@@ -2,6 +2,7 @@
 // Plane-masked KLT feature tracking with per-plane homography RANSAC (RP-VIO's front-end,
 // DESIGN.md §1 step 1). Pure image processing, no rawlog or module dependency: tests and the
 // initializer use it directly; FeatureTrackerModule wraps it for the pipeline.
+#include <Eigen/Core>
 #include <map>
 #include <opencv2/core.hpp>
 #include <string>
@@ -35,6 +36,10 @@ struct TrackerOptions {
   // Pyramid levels above the base image (2: three levels); 3 follows larger image motion, for fast
   // real sequences (docs/notes/2026-11-26-frontend-timing.md).
   int klt_levels = 2;
+  // KLT starts each track where the gyroscope's rotation since the previous image moves it
+  // (rotation_prediction.h; FeatureTrackerModule integrates the IMU's gyroscope between the
+  // images), instead of at its previous pixel.
+  bool predict_rotation = true;
   double max_forward_backward_px = 0.5;  // px
   // A plane absent from the whole mask (a segmentation network missed it) keeps its tracks for
   // this many frames, on their own forward-backward, anchor and per-plane RANSAC checks; 0: they
@@ -74,6 +79,7 @@ struct TrackerOptions {
     RPVIO_OPTION(v, min_plane_features);
     RPVIO_OPTION(v, klt_window);
     RPVIO_OPTION(v, klt_levels);
+    RPVIO_OPTION(v, predict_rotation);
     RPVIO_OPTION(v, max_forward_backward_px);
     RPVIO_OPTION(v, missed_plane_frames);
     RPVIO_OPTION(v, klt_min_eigenvalue);
@@ -100,7 +106,10 @@ class FeatureTracker {
   /// Tracks into a new image (CV_8UC1). `mask`: plane labels of the same instant (CV_8UC1, same
   /// size; 0 = not a static plane, 255 = unknown), ignored without use_masks. A missing or
   /// wrong-size mask, an all-zero mask or a blank image yield no features and one log line.
-  FeatureFrame track(double t, const cv::Mat& image, const cv::Mat& mask);
+  /// `R_cur_prev`, when given: the camera's rotation since the previous image (previous-camera
+  /// coordinates to current ones), where KLT starts each track (predict_rotation).
+  FeatureFrame track(double t, const cv::Mat& image, const cv::Mat& mask,
+                     const Eigen::Matrix3d* R_cur_prev = nullptr);
 
   /// Messages about degraded input since the last call (each distinct message once).
   std::vector<std::string> takeWarnings();
@@ -120,7 +129,8 @@ class FeatureTracker {
   void warnOnce(const std::string& message);
   void undistort(std::vector<Track>& tracks) const;
   using Pyramid = std::vector<cv::Mat>;  // cv::buildOpticalFlowPyramid's, with derivatives
-  std::vector<Track> propagate(const Pyramid& pyramid, const cv::Mat& mask);
+  std::vector<Track> propagate(const Pyramid& pyramid, const cv::Mat& mask,
+                               const Eigen::Matrix3d* R_cur_prev);
   void refineAgainstAnchors(std::vector<Track>& tracks, const PlaneHomographies& homographies,
                             const cv::Mat& image) const;
   PlaneHomographies rejectOutliers(std::vector<Track>& tracks) const;

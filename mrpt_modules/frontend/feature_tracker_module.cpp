@@ -2,9 +2,11 @@
 
 #include <mrpt/core/initializer.h>
 
+#include <algorithm>
 #include <chrono>
 
 #include "mrpt_modules/core/run_messages.h"
+#include "mrpt_modules/imu/gyro_rotation.h"
 
 #include "rawlog_io/rawlog_labels.h"
 #include "rawlog_io/rawlog_reader.h"
@@ -27,6 +29,11 @@ void FeatureTrackerModule::initialize(const IniFile& config, const std::string& 
   context.bus.subscribeSensor(labels::kCamera, [this](const auto& m) { onImage(m); });
   if (use_masks_)
     context.bus.subscribeSensor(labels::kPlaneMask, [this](const auto& m) { onMask(m); });
+  if (options.predict_rotation) {
+    R_BC_ = context.calibration.T_BC.linear();
+    time_offset_ = context.calibration.time_offset;
+    context.bus.subscribeSensor(labels::kImu, [this](const auto& m) { onImu(m); });
+  }
   setOptionsText("[" + section + "]\n" + options.describe());
 }
 
@@ -51,6 +58,34 @@ void FeatureTrackerModule::onMask(const ObservationMessage& m) {
   process(t);
 }
 
+void FeatureTrackerModule::onImu(const ObservationMessage& m) {
+  gyro_.push_back(
+      toImuSample(dynamic_cast<const mrpt::obs::CObservationIMU&>(*m.observation), *m.reader));
+}
+
+FeatureFrame FeatureTrackerModule::track(double t, const cv::Mat& image, const cv::Mat& mask) {
+  // Camera rotation between the images, R_cur_prev = R_BCᵀ ΔR_bᵀ R_BC with ΔR_b the body's
+  // rotation from the previous image to this one (gyro_rotation.h).
+  // Only samples before this image's time take part (the last one's rate held up to it): which
+  // later ones have arrived depends on how a rawlog orders equal times, the result must not.
+  const double to = t + time_offset_;
+  const std::vector<ImuSample> before(
+      gyro_.begin(), std::lower_bound(gyro_.begin(), gyro_.end(), to,
+                                      [](const ImuSample& s, double x) { return s.t < x; }));
+  std::optional<Eigen::Matrix3d> R_cur_prev;
+  if (previous_t_ && !before.empty() && t > *previous_t_) {
+    const Eigen::Matrix3d dR =
+        gyroRotation(before, *previous_t_ + time_offset_, to, Eigen::Vector3d::Zero());
+    R_cur_prev = R_BC_.transpose() * dR.transpose() * R_BC_;
+  }
+  previous_t_ = t;
+  // Samples before this image's time are no longer needed (keep the one at or before it).
+  const auto first_needed = std::upper_bound(gyro_.begin(), gyro_.end(), to,
+                                             [](double x, const ImuSample& s) { return x < s.t; });
+  if (first_needed != gyro_.begin()) gyro_.erase(gyro_.begin(), first_needed - 1);
+  return tracker_->track(t, image, mask, R_cur_prev ? &*R_cur_prev : nullptr);
+}
+
 void FeatureTrackerModule::process(double t) {
   const auto image = pending_images_.find(t);
   if (image == pending_images_.end()) return;
@@ -62,10 +97,10 @@ void FeatureTrackerModule::process(double t) {
   }
   // Images without a mask by the time a later image is complete get none (said once).
   for (auto it = pending_images_.begin(); it != image;) {
-    tracker_->track(it->first, it->second, cv::Mat());
+    track(it->first, it->second, cv::Mat());
     it = pending_images_.erase(it);
   }
-  const FeatureFrame frame = tracker_->track(t, image->second, mask);
+  const FeatureFrame frame = track(t, image->second, mask);
   pending_images_.erase(image);
   pending_masks_.erase(pending_masks_.begin(), pending_masks_.upper_bound(t));
   for (const auto& w : tracker_->takeWarnings())

@@ -1,11 +1,14 @@
 // The front-end against the simulator's ground truth: sub-pixel tracking accuracy on a static
-// sequence, and features that stay on static planes while characters dance in front of them.
+// sequence, and features that stay on static planes while characters dance in front of them;
+// tracks that follow a hand-held camera's fast turns with the gyroscope's prediction.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <map>
+#include <set>
 
 #include "mrpt_modules/frontend/feature_tracker.h"
+#include "mrpt_modules/imu/gyro_rotation.h"
 #include "sim/simulator.h"
 
 namespace rpvio {
@@ -95,6 +98,100 @@ TEST(TrackerOnSimulator, WithoutMasksTheNeighboursWarpKeepsTracksAlive) {
   EXPECT_LT(warped.median_px, unwarped.median_px);
   EXPECT_LT(warped.p95_px, unwarped.p95_px);
   EXPECT_LT(warped.births, 0.7 * unwarped.births);
+}
+
+struct FastTurnTracking {
+  double kept;  // of the previous frame's features still in view, the share still tracked
+  double median_px, p95_px;    // tracked pixel against the analytic projection
+  double largest_turn_px = 0;  // largest image motion of a frame's centre by the turn alone
+};
+
+/// The first 3 s of the handheld profile (head turns peaking at 3 rad/s from the start), at
+/// 640x360: tracks from frame to frame, with the gyroscope's rotation prediction or without.
+FastTurnTracking handheldTracking(bool predict_rotation, const char* profile = "handheld") {
+  sim::SimConfig c = sim::SimConfig::profile(profile);
+  c.camera.width = 640;
+  c.camera.height = 360;
+  c.duration = 3;
+  sim::Simulator sim(c);
+  const std::vector<ImuSample> imu = sim.imuStream();
+  TrackerOptions options;
+  options.predict_rotation = predict_rotation;
+  const CameraIntrinsics camera = sim.calibration().camera;
+  FeatureTracker tracker(camera, options);
+  const Eigen::Matrix3d R_BC = sim.calibration().T_BC.linear();
+  std::map<int, Eigen::Vector3d> landmark;
+  std::vector<double> errors;
+  std::vector<int> previous;  // the previous frame's feature ids
+  size_t continued = 0, offered = 0;
+  FastTurnTracking out;
+  const auto times = sim.frameTimes();
+  for (size_t k = 0; k < times.size(); ++k) {
+    const double t = times[k];
+    // What FeatureTrackerModule hands the tracker: the gyroscope (noise and bias as simulated)
+    // between the two images, turned into the camera's frame.
+    Eigen::Matrix3d R_cur_prev = Eigen::Matrix3d::Identity();
+    if (k > 0) {
+      std::vector<ImuSample> before;
+      for (const ImuSample& s : imu)
+        if (s.t < t) before.push_back(s);
+      const Eigen::Matrix3d dR = gyroRotation(before, times[k - 1], t, Eigen::Vector3d::Zero());
+      R_cur_prev = R_BC.transpose() * dR.transpose() * R_BC;
+      const Eigen::Vector3d centre = R_cur_prev * Eigen::Vector3d::UnitZ();
+      out.largest_turn_px =
+          std::max(out.largest_turn_px,
+                   camera.fx * Eigen::Vector2d(centre.x(), centre.y()).norm() / centre.z());
+    }
+    const sim::RenderedFrame frame = sim.render(t, static_cast<int>(k));
+    const FeatureFrame features =
+        tracker.track(t, frame.image, frame.mask, k > 0 ? &R_cur_prev : nullptr);
+    std::set<int> tracked;
+    for (const auto& f : features.features) {
+      if (f.track_length == 1) {
+        landmark[f.id] = sim.castPixel(t, f.pixel.x(), f.pixel.y()).point;
+        continue;
+      }
+      tracked.insert(f.id);
+      const auto expected = sim.project(t, landmark.at(f.id));
+      if (expected) errors.push_back((f.pixel - *expected).norm());
+    }
+    // Offered: the previous frame's features whose point is still in view, a KLT half-window
+    // inside the image.
+    const double margin = 0.5 * options.klt_window;
+    for (int id : previous) {
+      const auto at = sim.project(t, landmark.at(id));
+      if (!at || at->x() < margin || at->y() < margin || at->x() > c.camera.width - margin ||
+          at->y() > c.camera.height - margin)
+        continue;
+      ++offered;
+      continued += tracked.count(id);
+    }
+    previous.clear();
+    for (const auto& f : features.features) previous.push_back(f.id);
+  }
+  out.kept = offered ? static_cast<double>(continued) / offered : 0;
+  if (!errors.empty()) {
+    out.median_px = percentile(errors, 0.5);
+    out.p95_px = percentile(errors, 0.95);
+  }
+  return out;
+}
+
+TEST(TrackerOnSimulator, TheGyroscopesPredictionFollowsFastTurns) {
+  const FastTurnTracking predicted = handheldTracking(true);
+  const FastTurnTracking unpredicted = handheldTracking(false);
+  const FastTurnTracking slow = handheldTracking(true, "paper");  // the paper flight, same size
+  std::printf(
+      "handheld 3 s at 640x360 (turns up to %.0f px per frame): predicted %.1f%% kept, error "
+      "median %.3f px, p95 %.3f px; without %.1f%% kept, %.3f px, %.3f px; paper flight %.1f%%\n",
+      predicted.largest_turn_px, 100 * predicted.kept, predicted.median_px, predicted.p95_px,
+      100 * unpredicted.kept, unpredicted.median_px, unpredicted.p95_px, 100 * slow.kept);
+  // Measured: 89.7 % kept (0.044 / 0.363 px) against 70.2 % without; the slow paper flight
+  // keeps 92.8 % (tracks end at mask edges and in the checks whatever the motion).
+  EXPECT_GT(predicted.largest_turn_px, 40);  // beyond what a 21 px window reaches on 3 levels
+  EXPECT_LT(unpredicted.kept, slow.kept - 0.1);
+  EXPECT_GT(predicted.kept, slow.kept - 0.05);
+  EXPECT_LT(predicted.median_px, 0.15);  // the static sequence's bar
 }
 
 /// Fraction of (feature, frame) pairs whose tracked pixel lies on a character.
