@@ -60,6 +60,8 @@ struct Calibration {
   Eigen::Isometry3d T_BC = Eigen::Isometry3d::Identity();  // camera pose in the body frame
   double time_offset = 0.0;                                // t_imu = t_cam + time_offset
   ImuNoise imu;
+  double camera_height =
+      0.0;  // m, the camera's height above a flat ground (robots, cars); 0: unknown
 };
 
 /// A time in seconds for log lines, in full: "1403715273.262 s", not "1.4e+09 s".

@@ -73,6 +73,10 @@ Calibration loadCalibration(const std::string& path) {
   c.T_BC.linear() = rotation.normalized().toRotationMatrix();
   c.T_BC.translation() = Eigen::Vector3d(t[0], t[1], t[2]);
   c.time_offset = ini.numberOr("time", "offset", 0.0);
+  c.camera_height = ini.numberOr("ground", "camera_height", 0.0);
+  if (c.camera_height < 0)
+    throw InputError(path, "line " + std::to_string(ini.line("ground", "camera_height")),
+                     "camera_height must not be negative");
   c.imu.gyro_noise_density = ini.number("imu", "gyro_noise_density");
   c.imu.accel_noise_density = ini.number("imu", "accel_noise_density");
   c.imu.gyro_random_walk = ini.number("imu", "gyro_random_walk");
@@ -102,6 +106,7 @@ void saveCalibration(const std::string& path, const Calibration& c) {
         << "\ngyro_random_walk = " << c.imu.gyro_random_walk
         << "\naccel_random_walk = " << c.imu.accel_random_walk << "\nrate_hz = " << c.imu.rate_hz
         << "\ngravity = " << c.imu.gravity << "\n";
+    if (c.camera_height > 0) out << "\n[ground]\ncamera_height = " << c.camera_height << "\n";
   });
 }
 

@@ -159,6 +159,9 @@ Calibration SimConfig::calibration() const {
   calib.T_BC = camera.T_BC();
   calib.time_offset = 0.0;  // what a user would know before calibrating; the truth is time_offset
   calib.imu = imu;
+  // A platform whose camera keeps its height above the floor (no wave, bob or push) knows it.
+  if (flight.height_amplitude == 0 && flight.bob_amplitude == 0 && flight.start_push == 0)
+    calib.camera_height = flight.height + camera.T_BC_translation.z();
   return calib;
 }
 

@@ -5,6 +5,7 @@
 #include <unordered_map>
 
 #include "mrpt_modules/initialization/essential_two_view.h"
+#include "mrpt_modules/initialization/ground_plane_scale.h"
 #include "mrpt_modules/initialization/plane_from_metric_motion.h"
 #include "mrpt_modules/initialization/plane_motion_from_homography.h"
 #include "mrpt_modules/initialization/visual_bundle_adjustment.h"
@@ -264,13 +265,35 @@ InitializationResult Initializer::attempt(const Frames& all_frames,
     if (k > 0) up_to_scale[k].from_previous = std::make_shared<ImuPreintegration>(*imu[k]);
     result.imu.push_back(up_to_scale[k].from_previous);
   }
-  const auto aligned =
-      alignVisualInertial(up_to_scale, calibration_.T_BC, calibration_.imu.gravity, &why);
-  if (!aligned) return failure(InitStatus::kAlignmentRejected, why);
-  if (aligned->scale_sigma > o.max_relative_scale_sigma * aligned->scale)
-    return failure(
-        InitStatus::kTooLittleImuExcitation,
-        "scale uncertain by " + format(100 * aligned->scale_sigma / aligned->scale) + "%");
+  // With the camera's height above a flat ground known (calib.ini [ground] camera_height), a
+  // labelled plane of the window that is that ground gives the metric scale, whether or not the
+  // IMU's accelerations make it observable (ground_plane_scale.h); the alignment's gravity must
+  // then agree that the plane is level.
+  std::optional<AlignmentResult> aligned;
+  std::optional<GroundPlane> ground;
+  if (planar && calibration_.camera_height > 0) {
+    std::vector<Eigen::Matrix3d> R_l_b;
+    for (size_t k = 0; k < n; ++k) R_l_b.push_back(window.cameras[k]->R_r_c * R_BC.transpose());
+    ground = findGroundPlane(window, gravityDirection(R_l_b, imu), o.max_ground_tilt_deg,
+                             o.min_plane_features);
+    if (ground)
+      aligned = alignVisualInertial(up_to_scale, calibration_.T_BC, calibration_.imu.gravity, &why,
+                                    calibration_.camera_height / ground->d);
+    if (aligned) {
+      const double cosine = (c0_l.R_r_c * ground->n_r).dot(aligned->gravity_c0.normalized());
+      if (std::acos(std::clamp(cosine, -1.0, 1.0)) > o.max_ground_tilt_deg * M_PI / 180)
+        aligned.reset();
+    }
+    if (!aligned) ground.reset();
+  }
+  if (!aligned) {
+    aligned = alignVisualInertial(up_to_scale, calibration_.T_BC, calibration_.imu.gravity, &why);
+    if (!aligned) return failure(InitStatus::kAlignmentRejected, why);
+    if (aligned->scale_sigma > o.max_relative_scale_sigma * aligned->scale)
+      return failure(
+          InitStatus::kTooLittleImuExcitation,
+          "scale uncertain by " + format(100 * aligned->scale_sigma / aligned->scale) + "%");
+  }
 
   // World: gravity along −z, origin at body 0, yaw of body 0 zero.
   const double s = aligned->scale;
@@ -331,10 +354,15 @@ InitializationResult Initializer::attempt(const Frames& all_frames,
   result.pair_last = r;
   result.scale = s;
   result.status = InitStatus::kSuccess;
-  result.reason = std::string(toString(InitStatus::kSuccess)) + " (pair " + std::to_string(l) +
-                  "-" + std::to_string(r) + ", scale " + format(s, 3) + ", BA RMS " +
-                  format(adjusted.final_rms_px, 2) + " px, ba " + format(result.ba.norm(), 3) +
-                  ", bg " + format(result.bg.norm(), 4) + ")";
+  result.reason =
+      std::string(toString(InitStatus::kSuccess)) + " (pair " + std::to_string(l) + "-" +
+      std::to_string(r) + ", scale " + format(s, 3) + ", BA RMS " +
+      format(adjusted.final_rms_px, 2) + " px, ba " + format(result.ba.norm(), 3) + ", bg " +
+      format(result.bg.norm(), 4) +
+      (ground ? ", scale from the camera height over plane " + std::to_string(ground->plane_id)
+              : std::string()) +
+      ")";
+  result.scale_from_camera_height = ground.has_value();
   return result;
 }
 

@@ -59,6 +59,9 @@ struct InitializerOptions {
   // The alignment's scale standard deviation (from its residual) relative to the scale: above
   // it, the window's accelerations do not make the scale observable (too little excitation).
   double max_relative_scale_sigma = 0.03;
+  // Planar, with the calibration's camera_height: a plane counts as the ground when its normal is
+  // within this of gravity (the scale then comes from the height).
+  double max_ground_tilt_deg = 10.0;
   double pixel_sigma = 1.5;    // BA weight virtual_focal / pixel_sigma
   double max_ba_rms_px = 2.0;  // structure rejected above this residual RMS
 };
@@ -88,7 +91,8 @@ struct InitializationResult {
   int reference_plane = -1;            // planar: the plane of the homography
   std::map<int, FeatureDepth> depths;  // by feature id
   size_t pair_first = 0, pair_last = 0;
-  double scale = 0;  // metres per SfM unit (plane distance, or pair baseline)
+  double scale = 0;                       // metres per SfM unit (plane distance, or pair baseline)
+  bool scale_from_camera_height = false;  // the scale from the ground and the camera's height
 
   bool ok() const { return status == InitStatus::kSuccess; }
 };

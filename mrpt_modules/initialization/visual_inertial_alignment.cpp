@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <cstdlib>
+#include <optional>
 
 namespace rpvio {
 namespace {
@@ -33,9 +34,12 @@ Eigen::Matrix<double, 3, 2> tangentBasis(const Eigen::Vector3d& g) {
 /// `scale_sigma`: uncertainty of the scale, combining the residual's variance times (AᵀA)⁻¹ and,
 /// with g fixed, how far the scale moves when the accelerometer-bias prior is moved by
 /// kAccelBiasRange along each axis (a bias the window cannot tell from a constant acceleration).
+/// With `known_scale` its column moves to the right-hand side: the last unknown is then a
+/// placeholder that stays 0, and is returned as the known scale.
 Eigen::VectorXd solveLinear(const std::vector<UpToScaleFrame>& frames,
                             const Eigen::Isometry3d& T_BC, const Eigen::Vector3d* g_fixed,
-                            double gravity, double* scale_sigma = nullptr) {
+                            double gravity, double* scale_sigma = nullptr,
+                            std::optional<double> known_scale = {}) {
   const int n = static_cast<int>(frames.size());
   const int g_dims = g_fixed ? 5 : 3;  // with g fixed: w (2) + δba (3)
   const int unknowns = 3 * n + g_dims + 1;
@@ -61,8 +65,12 @@ Eigen::VectorXd solveLinear(const std::vector<UpToScaleFrame>& frames,
     const int row = 6 * k, g_col = 3 * n, s_col = 3 * n + g_dims;
     // Position equation; the gravity term is −½ T² g = −½ T² (g0 + B w).
     A.block<3, 3>(row, 3 * k) = -T * Eigen::Matrix3d::Identity();
-    A.block<3, 1>(row, s_col) = frames[k + 1].p_c0_c - frames[k].p_c0_c;
+    const Eigen::Vector3d baseline = frames[k + 1].p_c0_c - frames[k].p_c0_c;
     b.segment<3>(row) = Rk * pre.deltaP() + (Rk1 - Rk) * t_bc;
+    if (known_scale)
+      b.segment<3>(row) -= *known_scale * baseline;
+    else
+      A.block<3, 1>(row, s_col) = baseline;
     // Velocity equation.
     A.block<3, 3>(row + 3, 3 * k) = -Eigen::Matrix3d::Identity();
     A.block<3, 3>(row + 3, 3 * (k + 1)) = Eigen::Matrix3d::Identity();
@@ -83,8 +91,8 @@ Eigen::VectorXd solveLinear(const std::vector<UpToScaleFrame>& frames,
   const double s_weight = 100.0;
   A.col(unknowns - 1) *= s_weight;
   const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
-  Eigen::VectorXd x = qr.solve(b);
-  if (scale_sigma) {
+  Eigen::VectorXd x = qr.solve(b);  // with a known scale its zero column solves to 0
+  if (scale_sigma && !known_scale) {
     const double dof = std::max<double>(1, A.rows() - unknowns);
     const double variance = (A * x - b).squaredNorm() / dof;
     const Eigen::MatrixXd information = A.transpose() * A;
@@ -97,7 +105,8 @@ Eigen::VectorXd solveLinear(const std::vector<UpToScaleFrame>& frames,
     }
     *scale_sigma = s_weight * std::sqrt(sigma2);
   }
-  x(unknowns - 1) *= s_weight;
+  x(unknowns - 1) = known_scale ? *known_scale : s_weight * x(unknowns - 1);
+  if (known_scale && scale_sigma) *scale_sigma = 0;
   if (g_fixed) {
     const Eigen::Vector3d g = g0 + B * x.segment<2>(3 * n);
     Eigen::VectorXd out(3 * n + 7);
@@ -132,7 +141,8 @@ Eigen::Vector3d solveGyroBias(std::vector<UpToScaleFrame>& frames, const Eigen::
 
 std::optional<AlignmentResult> alignVisualInertial(std::vector<UpToScaleFrame>& frames,
                                                    const Eigen::Isometry3d& T_BC, double gravity,
-                                                   std::string* why_not) {
+                                                   std::string* why_not,
+                                                   std::optional<double> known_scale) {
   auto fail = [&](const std::string& reason) {
     if (why_not) *why_not = reason;
     return std::nullopt;
@@ -141,7 +151,7 @@ std::optional<AlignmentResult> alignVisualInertial(std::vector<UpToScaleFrame>& 
   AlignmentResult result;
   result.gyro_bias = solveGyroBias(frames, T_BC);
   const int n = static_cast<int>(frames.size());
-  Eigen::VectorXd x = solveLinear(frames, T_BC, nullptr, gravity);
+  Eigen::VectorXd x = solveLinear(frames, T_BC, nullptr, gravity, nullptr, known_scale);
   const Eigen::Vector3d g_free = x.segment<3>(3 * n);
   if (x(3 * n + 3) <= 0) return fail("alignment rejected: non-positive scale");
   if (std::abs(g_free.norm() - gravity) > 0.2 * gravity)
@@ -149,7 +159,7 @@ std::optional<AlignmentResult> alignVisualInertial(std::vector<UpToScaleFrame>& 
   // Refinement on the sphere |g| = gravity (2 degrees of freedom), a few re-linearizations.
   Eigen::Vector3d g = g_free;
   for (int iteration = 0; iteration < 4; ++iteration) {
-    x = solveLinear(frames, T_BC, &g, gravity, &result.scale_sigma);
+    x = solveLinear(frames, T_BC, &g, gravity, &result.scale_sigma, known_scale);
     g = x.segment<3>(3 * n);
   }
   result.scale = x(3 * n + 3);

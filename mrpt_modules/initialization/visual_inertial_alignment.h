@@ -35,9 +35,11 @@ struct AlignmentResult {
 Eigen::Vector3d solveGyroBias(std::vector<UpToScaleFrame>& frames, const Eigen::Isometry3d& T_BC);
 
 /// Full alignment; on failure (negative scale, gravity magnitude far from `gravity`), nullopt and
-/// the reason in `why_not`.
+/// the reason in `why_not`. With `known_scale` (metres per unit of p_c0_c, e.g. from the camera's
+/// height above the ground plane) the scale is not solved for: scale_sigma is 0.
 std::optional<AlignmentResult> alignVisualInertial(std::vector<UpToScaleFrame>& frames,
                                                    const Eigen::Isometry3d& T_BC, double gravity,
-                                                   std::string* why_not = nullptr);
+                                                   std::string* why_not = nullptr,
+                                                   std::optional<double> known_scale = {});
 
 }  // namespace rpvio

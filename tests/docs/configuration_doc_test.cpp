@@ -101,13 +101,14 @@ TEST(ConfigurationDoc, SimulatorAndCalibrationKeysAreTheLoadableOnes) {
   expectSameKeys(
       sim, iniKeys(test::readFile(std::string(RPVIO_SOURCE_DIR) + "/config/sim/warehouse.ini")),
       "simulator scene");
-  // A written calib.ini with distortion has every key.
+  // A written calib.ini with distortion and a camera height has every key.
   test::TempDir dir;
   Calibration c;
   c.camera.width = 640;
   c.camera.height = 480;
   c.camera.fx = c.camera.fy = 320;
   c.camera.model = DistortionModel::RadTan;
+  c.camera_height = 1.65;  // optional, written when known
   saveCalibration(dir.file("calib.ini"), c);
   expectSameKeys(calib, iniKeys(test::readFile(dir.file("calib.ini"))), "calib.ini");
 }

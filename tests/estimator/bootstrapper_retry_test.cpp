@@ -16,7 +16,8 @@ struct Attempts {
 };
 
 Attempts feed(double init_retry_s) {
-  sim::Simulator sim{sim::SimConfig{}};
+  const sim::SimConfig config;
+  sim::Simulator sim(config);
   const test::ExactWindow w = test::exactWindow(sim, 0, 3.5, Eigen::Vector3d::Zero());
   std::vector<ImuSample> imu = sim.imuStream();
   for (ImuSample& s : imu) s.accel *= 1.5;

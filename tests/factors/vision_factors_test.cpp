@@ -21,7 +21,8 @@ std::vector<double> block(const Eigen::Isometry3d& T) {
 }
 
 struct TwoViews {
-  sim::Simulator sim{sim::SimConfig{}};
+  const sim::SimConfig config;
+  sim::Simulator sim{config};
   double ti = 10.0, tj = 10.5;
   std::vector<double> pose_i = block(sim.bodyPose(ti)), pose_j = block(sim.bodyPose(tj));
   std::vector<double> mount = block(sim.config().camera.T_BC());

@@ -1,4 +1,4 @@
-// calib.ini save/load round trip for both distortion models.
+// calib.ini save/load round trip for both distortion models, and the optional camera height.
 #include <gtest/gtest.h>
 
 #include "rawlog_io/calibration.h"
@@ -34,6 +34,26 @@ TEST(Calibration, RoundTripsBothDistortionModels) {
     EXPECT_DOUBLE_EQ(b.time_offset, 0.03);
     EXPECT_DOUBLE_EQ(b.imu.gyro_random_walk, a.imu.gyro_random_walk);
     EXPECT_DOUBLE_EQ(b.imu.gravity, 9.81);
+  }
+}
+
+TEST(Calibration, TheCameraHeightIsOptionalAndNeverNegative) {
+  test::TempDir dir;
+  Calibration a = sample(DistortionModel::None);
+  saveCalibration(dir.file("without.ini"), a);
+  EXPECT_EQ(test::readFile(dir.file("without.ini")).find("[ground]"), std::string::npos);
+  EXPECT_EQ(loadCalibration(dir.file("without.ini")).camera_height, 0);  // unknown
+  a.camera_height = 1.65;
+  saveCalibration(dir.file("with.ini"), a);
+  EXPECT_DOUBLE_EQ(loadCalibration(dir.file("with.ini")).camera_height, 1.65);
+  test::writeText(dir.file("negative.ini"),
+                  test::readFile(dir.file("without.ini")) + "\n[ground]\ncamera_height = -1\n");
+  try {
+    loadCalibration(dir.file("negative.ini"));
+    FAIL();
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("camera_height must not be negative"), std::string::npos)
+        << e.what();
   }
 }
 
