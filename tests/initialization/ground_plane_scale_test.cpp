@@ -68,9 +68,9 @@ TEST(GroundPlane, GravityFromTheSpecificForceOfABodyAtRest) {
   const Eigen::Vector3d accel = R_r_b.transpose() * up_r.normalized() * 9.81;
   std::vector<std::shared_ptr<ImuPreintegration>> imu{nullptr};
   for (int k = 0; k < 5; ++k) {
-    auto pre = std::make_shared<ImuPreintegration>(accel, Eigen::Vector3d::Zero(),
-                                                   Eigen::Vector3d::Zero(),
-                                                   Eigen::Vector3d::Zero(), ImuNoise{});
+    auto pre =
+        std::make_shared<ImuPreintegration>(accel, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
+                                            Eigen::Vector3d::Zero(), ImuNoise{});
     for (int j = 0; j < 10; ++j) pre->push(0.005, accel, Eigen::Vector3d::Zero());
     imu.push_back(pre);
   }
