@@ -13,12 +13,12 @@
 #include "mrpt_modules/estimator/plane_discovery.h"
 #include "mrpt_modules/frontend/feature_tracker.h"
 #include "mrpt_modules/frontend/homography_ransac.h"
-#include "tests/test_util.h"
+#include "tests/vamr_checkerboard.h"
 
 namespace rpvio {
 namespace {
 
-const std::string kDir = test::dataDir() + "/vamr_checkerboard";
+const std::string kDir = test::vamrDir();
 constexpr int kFrames = 736, kGap = 5;
 constexpr double kRate = 30;  // Hz: assumed (no timestamps); only the check's span depends on it
 
@@ -37,21 +37,6 @@ CameraIntrinsics intrinsics() {
   return c;
 }
 
-/// cam_T_w of every frame (poses.txt: axis-angle, translation).
-std::vector<Eigen::Isometry3d> cameraFromWorld() {
-  std::ifstream in(kDir + "/poses.txt");
-  std::vector<Eigen::Isometry3d> poses;
-  double w[3], t[3];
-  while (in >> w[0] >> w[1] >> w[2] >> t[0] >> t[1] >> t[2]) {
-    const Eigen::Vector3d axis(w[0], w[1], w[2]);
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    if (axis.norm() > 0) T.linear() = Eigen::AngleAxisd(axis.norm(), axis.normalized()).matrix();
-    T.translation() = Eigen::Vector3d(t[0], t[1], t[2]);
-    poses.push_back(T);
-  }
-  return poses;
-}
-
 /// Normalized-coordinate homography of the board plane (world Z = 0) from frame a to frame b.
 Eigen::Matrix3d boardHomography(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   const auto plane_to_image = [](const Eigen::Isometry3d& T) {
@@ -64,7 +49,7 @@ Eigen::Matrix3d boardHomography(const Eigen::Isometry3d& a, const Eigen::Isometr
 
 TEST(PlaneDiscoveryOnRealImages, FindsTheCheckerboardWithItsTrueHomographies) {
   const CameraIntrinsics camera = intrinsics();
-  const std::vector<Eigen::Isometry3d> poses = cameraFromWorld();
+  const std::vector<Eigen::Isometry3d> poses = test::vamrCameraFromWorld();
   ASSERT_EQ(poses.size(), static_cast<size_t>(kFrames)) << kDir;
   TrackerOptions tracking;
   tracking.use_masks = false;
