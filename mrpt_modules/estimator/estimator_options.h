@@ -59,8 +59,9 @@ struct EstimatorOptions {
   // reset, the window refines the scale: the paper suite starts as with 0.03 (its take-off push
   // gives < 3 %), a drone cruising at 5 m/s starts at 2 s instead of 38 s.
   double init_max_scale_sigma = 0.10;
-  // After an attempt fails in its geometry or alignment (not for want of frames, features or
-  // parallax, which is cheap to find), the next attempt waits this long (s).
+  // Before the first initialization, after an attempt fails in its geometry or alignment (not for
+  // want of frames, features or parallax, which is cheap to find), the next attempt waits this
+  // long (s). Re-initializations after a reset try every frame.
   double init_retry_s = 0.25;
   // Re-initialization after a reset: mid-flight accelerations make the scale less observable
   // than the take-off, so the alignment's scale may be this uncertain (the window refines it) ...
