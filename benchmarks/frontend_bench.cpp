@@ -41,9 +41,7 @@ const Sequence& sequence(const std::string& profile) {
       std::vector<rpvio::ImuSample> before;
       for (const auto& sample : imu)
         if (sample.t < s.times[k]) before.push_back(sample);
-      const Eigen::Matrix3d dR =
-          rpvio::gyroRotation(before, s.times[k - 1], s.times[k], Eigen::Vector3d::Zero());
-      R = R_BC.transpose() * dR.transpose() * R_BC;
+      R = rpvio::cameraRotationBetween(before, s.times[k - 1], s.times[k], R_BC);
     }
     s.R_cur_prev.push_back(R);
   }

@@ -64,20 +64,16 @@ void FeatureTrackerModule::onImu(const ObservationMessage& m) {
 }
 
 FeatureFrame FeatureTrackerModule::track(double t, const cv::Mat& image, const cv::Mat& mask) {
-  // Camera rotation between the images, R_cur_prev = R_BCᵀ ΔR_bᵀ R_BC with ΔR_b the body's
-  // rotation from the previous image to this one (gyro_rotation.h).
-  // Only samples before this image's time take part (the last one's rate held up to it): which
-  // later ones have arrived depends on how a rawlog orders equal times, the result must not.
+  // The camera's rotation since the previous image (gyro_rotation.h). Only samples before this
+  // image's time take part (the last one's rate held up to it): which later ones have arrived
+  // depends on how a rawlog orders equal times, the result must not.
   const double to = t + time_offset_;
   const std::vector<ImuSample> before(
       gyro_.begin(), std::lower_bound(gyro_.begin(), gyro_.end(), to,
                                       [](const ImuSample& s, double x) { return s.t < x; }));
   std::optional<Eigen::Matrix3d> R_cur_prev;
-  if (previous_t_ && !before.empty() && t > *previous_t_) {
-    const Eigen::Matrix3d dR =
-        gyroRotation(before, *previous_t_ + time_offset_, to, Eigen::Vector3d::Zero());
-    R_cur_prev = R_BC_.transpose() * dR.transpose() * R_BC_;
-  }
+  if (previous_t_ && !before.empty() && t > *previous_t_)
+    R_cur_prev = cameraRotationBetween(before, *previous_t_ + time_offset_, to, R_BC_);
   previous_t_ = t;
   // Samples before this image's time are no longer needed (keep the one at or before it).
   const auto first_needed = std::upper_bound(gyro_.begin(), gyro_.end(), to,

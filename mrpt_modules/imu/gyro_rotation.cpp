@@ -36,4 +36,9 @@ Eigen::Matrix3d gyroRotation(const std::vector<ImuSample>& s, double a, double b
   return R;
 }
 
+Eigen::Matrix3d cameraRotationBetween(const std::vector<ImuSample>& samples, double a, double b,
+                                      const Eigen::Matrix3d& R_BC) {
+  return R_BC.transpose() * gyroRotation(samples, a, b, Eigen::Vector3d::Zero()).transpose() * R_BC;
+}
+
 }  // namespace rpvio

@@ -14,4 +14,9 @@ namespace rpvio {
 Eigen::Matrix3d gyroRotation(const std::vector<ImuSample>& samples, double a, double b,
                              const Eigen::Vector3d& bias);
 
+/// The camera's rotation from time a to b, previous-camera coordinates to current ones:
+/// R_BCᵀ ΔR_bᵀ R_BC with ΔR_b = gyroRotation(samples, a, b, 0) (bias not corrected).
+Eigen::Matrix3d cameraRotationBetween(const std::vector<ImuSample>& samples, double a, double b,
+                                      const Eigen::Matrix3d& R_BC);
+
 }  // namespace rpvio

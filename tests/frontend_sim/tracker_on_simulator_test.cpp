@@ -135,8 +135,7 @@ FastTurnTracking handheldTracking(bool predict_rotation, const char* profile = "
       std::vector<ImuSample> before;
       for (const ImuSample& s : imu)
         if (s.t < t) before.push_back(s);
-      const Eigen::Matrix3d dR = gyroRotation(before, times[k - 1], t, Eigen::Vector3d::Zero());
-      R_cur_prev = R_BC.transpose() * dR.transpose() * R_BC;
+      R_cur_prev = cameraRotationBetween(before, times[k - 1], t, R_BC);
       const Eigen::Vector3d centre = R_cur_prev * Eigen::Vector3d::UnitZ();
       out.largest_turn_px =
           std::max(out.largest_turn_px,
