@@ -12,6 +12,8 @@ void EstimatorOptions::validate(const OptionsLoader& loader) const {
   loader.require(discover_min_features >= 3, "discover_min_features", "must be 3 or more");
   loader.require(discover_span_s > 0, "discover_span_s", "must be positive");
   loader.require(verify_span_s > 0, "verify_span_s", "must be positive");
+  loader.require(init_fallback_parallax_px > 0 && init_fallback_parallax_px <= init_parallax_px,
+                 "init_fallback_parallax_px", "must be positive and at most init_parallax_px");
   loader.require(init_window_frames >= 2, "init_window_frames", "must be 2 or more");
   loader.require(discover_confirm_after >= 1, "discover_confirm_after", "must be 1 or more");
   loader.require(discover_reject_after >= 1, "discover_reject_after", "must be 1 or more");
@@ -60,6 +62,7 @@ InitializerOptions EstimatorOptions::initializerOptions() const {
   o.method = initializer;
   o.min_window_s = init_window_s;
   o.min_parallax_px = init_parallax_px;
+  o.fallback_parallax_px = init_fallback_parallax_px;
   o.max_relative_scale_sigma = init_max_scale_sigma;
   o.virtual_focal = virtual_focal;
   o.pixel_sigma = pixel_sigma;

@@ -174,8 +174,14 @@ InitializationResult Initializer::attempt(const Frames& all_frames,
       p.parallax =
           translationalParallax(p.u_i, p.u_j, gyroCameraRotation(imu, i, j, R_BC), o.virtual_focal);
       most_parallax = std::max(most_parallax, p.parallax);
-      if (p.parallax >= o.min_parallax_px) pairs.push_back(std::move(p));
+      if (p.parallax >= std::min(o.min_parallax_px, o.fallback_parallax_px))
+        pairs.push_back(std::move(p));
     }
+  // Pairs below min_parallax_px only when no pair reaches it.
+  if (most_parallax >= o.min_parallax_px)
+    pairs.erase(std::remove_if(pairs.begin(), pairs.end(),
+                               [&](const Pair& p) { return p.parallax < o.min_parallax_px; }),
+                pairs.end());
   if (pairs.empty()) {
     if (most_parallax < 0)
       return failure(planar ? InitStatus::kTooFewPlaneFeatures : InitStatus::kTooFewFeatures,

@@ -37,7 +37,7 @@ enum class InitStatus {
   kCollectingFrames,        // window too short
   kTooFewPlaneFeatures,     // planar: largest plane shared by too few features with the last frame
   kTooFewFeatures,          // essential: too few correspondences with the last frame
-  kTooLittleParallax,       // the best pair moves less than min_parallax_px (rotation compensated)
+  kTooLittleParallax,       // no pair moves fallback_parallax_px (rotation compensated)
   kTooLittleImuExcitation,  // accelerations too uniform: the alignment's scale is uncertain
   kGeometryFailed,          // homography/essential/PnP failed or disagrees with the gyroscope
   kAlignmentRejected,       // scale ≤ 0, gravity magnitude off
@@ -48,8 +48,11 @@ struct InitializerOptions {
   InitializerMethod method = InitializerMethod::kPlanarHomography;
   size_t min_frames = 10;
   double min_window_s = 2.0;  // time span of the window: baseline and IMU excitation for the scale
-  double virtual_focal = 460.0;    // px; thresholds below are at this focal length
-  double min_parallax_px = 30.0;   // mean rotation-compensated displacement in the pair
+  double virtual_focal = 460.0;   // px; thresholds below are at this focal length
+  double min_parallax_px = 30.0;  // mean rotation-compensated displacement in the pair
+  // When no pair reaches min_parallax_px, the pairs down to this are tried: the gyroscope's
+  // agreement, the bundle adjustment and the scale's precision then decide.
+  double fallback_parallax_px = 8.0;
   size_t min_plane_features = 20;  // planar: largest plane's features common to the pair
   size_t min_features = 30;        // essential: features common to the pair
   // Wider than the front-end's 1 px frame to frame: tracks drift a little over the pair's baseline.

@@ -152,5 +152,36 @@ TEST(InitializerReasons, WaitsWithAReasonLoggedOncePerChange) {
   EXPECT_EQ(logged.size(), 4u);
 }
 
+TEST(InitializerParallax, BelowTheThresholdThePairsAboveTheFallbackAreTried) {
+  sim::Simulator sim(noiseFreeConfig(3.0));
+  const test::ExactWindow w = test::exactWindow(sim, 0.0, 2.0, kGyroBias);
+  InitializerOptions options;
+  // Neither threshold reached: the reason names the best pair's parallax.
+  options.min_parallax_px = options.fallback_parallax_px = 1e4;
+  const InitializationResult none =
+      Initializer(sim.calibration(), options).tryInitialize(w.frames, w.imu);
+  ASSERT_EQ(none.status, InitStatus::kTooLittleParallax) << none.reason;
+  const double best = std::stod(none.reason.substr(none.reason.find('(') + 1));
+  ASSERT_GT(best, 30.0) << none.reason;
+  // No pair reaches min_parallax_px: those above the fallback initialize, as accurately.
+  options.fallback_parallax_px = 0.5 * best;
+  const InitializationResult fallback =
+      Initializer(sim.calibration(), options).tryInitialize(w.frames, w.imu);
+  ASSERT_TRUE(fallback.ok()) << fallback.reason;
+  const Errors e = compare(fallback, sim, w);
+  EXPECT_LT(e.scale, 0.005);
+  EXPECT_LT(e.drift, 0.005);
+  // Pairs reach min_parallax_px: a lower fallback changes nothing.
+  options.min_parallax_px = options.fallback_parallax_px = 0.5 * best;
+  const InitializationResult at_threshold =
+      Initializer(sim.calibration(), options).tryInitialize(w.frames, w.imu);
+  options.fallback_parallax_px = 0.1 * best;
+  const InitializationResult with_fallback =
+      Initializer(sim.calibration(), options).tryInitialize(w.frames, w.imu);
+  ASSERT_TRUE(at_threshold.ok()) << at_threshold.reason;
+  EXPECT_EQ(with_fallback.reason, at_threshold.reason);
+  EXPECT_TRUE(with_fallback.T_w_b.back().isApprox(at_threshold.T_w_b.back(), 1e-12));
+}
+
 }  // namespace
 }  // namespace rpvio
