@@ -48,7 +48,8 @@ const Sequence& sequence(const std::string& profile) {
   return rendered.emplace(profile, std::move(s)).first->second;
 }
 
-void trackSequence(benchmark::State& state, bool masks, int detection_level = 0,
+void trackSequence(benchmark::State& state, bool masks,
+                   int detection_level = rpvio::TrackerOptions{}.detection_level,
                    int min_plane_features = rpvio::TrackerOptions{}.min_plane_features,
                    const std::string& profile = "paper") {
   const Sequence& sequence_ = sequence(profile);
@@ -92,12 +93,21 @@ void BM_FrontendPlaneMasksHalfResolutionCorners(benchmark::State& state) {
 }
 // One spacing for every plane (`min_plane_features = 0`, mask-vins' detector).
 void BM_FrontendPlaneMasksOneSpacing(benchmark::State& state) { trackSequence(state, true, 0, 0); }
-// The handheld profile: 1280x720 at 30 Hz, 60° field of view, head turns up to 3 rad/s.
+// The handheld profile: 1280x720 at 30 Hz, 60° field of view, head turns up to 3 rad/s; corners
+// on the half-resolution image (the default detection level at this width) and, for comparison,
+// on the full one.
 void BM_FrontendPlaneMasksHandheld1280x720(benchmark::State& state) {
+  trackSequence(state, true, rpvio::TrackerOptions{}.detection_level,
+                rpvio::TrackerOptions{}.min_plane_features, "handheld");
+}
+void BM_FrontendPlaneMasksHandheld1280x720FullResolutionCorners(benchmark::State& state) {
   trackSequence(state, true, 0, rpvio::TrackerOptions{}.min_plane_features, "handheld");
 }
 BENCHMARK(BM_FrontendPlaneMasks)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_FrontendPlaneMasksHandheld1280x720)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_FrontendPlaneMasksHandheld1280x720FullResolutionCorners)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK(BM_FrontendNoMasks)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_FrontendPlaneMasksHalfResolutionCorners)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_FrontendPlaneMasksOneSpacing)->Unit(benchmark::kMillisecond)->UseRealTime();

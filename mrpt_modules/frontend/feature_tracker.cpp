@@ -52,8 +52,8 @@ std::array<bool, 256> labelsIn(const cv::Mat& mask) {
 }  // namespace
 
 void TrackerOptions::validate(const OptionsLoader& loader) const {
-  loader.require(detection_level >= 0 && detection_level <= 3, "detection_level",
-                 "must be 0 (full resolution) to 3");
+  loader.require(detection_level >= -1 && detection_level <= 3, "detection_level",
+                 "must be 0 (full resolution) to 3, or -1 (by the image's width)");
 }
 
 FeatureTracker::FeatureTracker(const CameraIntrinsics& camera, const TrackerOptions& options)
@@ -230,18 +230,26 @@ void FeatureTracker::computeUniformRegions(const cv::Mat& mask) {
   detectable_ &= trackable_;
 }
 
+int FeatureTracker::detectionLevel(int width) const {
+  if (options_.detection_level >= 0) return options_.detection_level;
+  int level = 0;
+  while (level < 3 && (width >> (level + 1)) >= TrackerOptions::kAutoDetectionWidth) ++level;
+  return level;
+}
+
 std::vector<cv::Point2f> FeatureTracker::detectCorners(CornerDetector& detector,
                                                        const cv::Mat& image, const cv::Mat& allowed,
-                                                       int wanted, double spacing) const {
-  // Shi–Tomasi corners on pyramid level `detection_level`: a corner there is a textured
-  // neighbourhood of 3·2^level px, which a KLT window of 21 px tracks as well as a full-resolution
-  // one, at a quarter of the cost per level.
+                                                       int wanted, double spacing,
+                                                       int level) const {
+  // Shi–Tomasi corners on pyramid level `level`: a corner there is a textured neighbourhood of
+  // 3·2^level px, which a KLT window of 21 px tracks as well as a full-resolution one, at a
+  // quarter of the cost per level.
   cv::Mat level_image = image, level_allowed = allowed;
-  for (int l = 0; l < options_.detection_level; ++l) {
+  for (int l = 0; l < level; ++l) {
     cv::pyrDown(level_image, level_image);
     cv::resize(level_allowed, level_allowed, level_image.size(), 0, 0, cv::INTER_NEAREST);
   }
-  const double scale = std::ldexp(1.0, options_.detection_level);
+  const double scale = std::ldexp(1.0, level);
   std::vector<cv::Point2f> corners =
       detector.detect(level_image, level_allowed, wanted, 0.01, std::max(1.0, spacing / scale));
   // Level pixel (x, y) is centred on base pixel (2^level x, 2^level y) (pyrDown's kernel).
@@ -365,25 +373,30 @@ FeatureFrame FeatureTracker::track(double t, const cv::Mat& raw_image, const cv:
   int wanted = options_.max_features - static_cast<int>(spaced.size());
   if (wanted > 0) {
     cv::Mat& allowed = detectionMask(taken);
+    const int level = detectionLevel(image.cols);
     const bool any_allowed = cv::countNonZero(allowed) > 0;
     std::vector<cv::Point2f> corners;
     // The dense planes first, each up to min_plane_features, on its own box and label; then the
     // other planes (a dense plane gets no more corners at the wider spacing).
     for (const auto& [label, plane] : dense) {
-      cv::compare(mask(plane.box), label, on_plane_, cv::CMP_EQ);
-      on_plane_ &= allowed(plane.box);
+      // The box starts on the detection level's pixel lattice, as the whole image's does.
+      const int step = 1 << level;
+      const cv::Point corner(plane.box.x / step * step, plane.box.y / step * step);
+      const cv::Rect box(corner, plane.box.br());  // from one corner to the other
+      cv::compare(mask(box), label, on_plane_, cv::CMP_EQ);
+      on_plane_ &= allowed(box);
       const int on_plane = std::min(wanted, options_.min_plane_features - tracks_on_plane[label]);
       if (on_plane > 0) {
         auto found =
-            detectCorners(plane_detector_, image(plane.box), on_plane_, on_plane, plane.spacing);
-        for (cv::Point2f& c : found) c += cv::Point2f(plane.box.tl());
+            detectCorners(plane_detector_, image(box), on_plane_, on_plane, plane.spacing, level);
+        for (cv::Point2f& c : found) c += cv::Point2f(box.tl());
         corners.insert(corners.end(), found.begin(), found.end());
         wanted -= static_cast<int>(found.size());
       }
-      allowed(plane.box).setTo(0, on_plane_);
+      allowed(box).setTo(0, on_plane_);
     }
     if (wanted > 0 && any_allowed) {
-      auto found = detectCorners(detector_, image, allowed, wanted, options_.min_distance);
+      auto found = detectCorners(detector_, image, allowed, wanted, options_.min_distance, level);
       corners.insert(corners.end(), found.begin(), found.end());
     }
     if (!any_allowed && spaced.empty())

@@ -65,8 +65,10 @@ struct TrackerOptions {
   // neighbours (within 4 min_distance) instead of not at all: surfaces seen at an angle keep
   // their tracks as the view changes (local_image_motion.h).
   bool local_warps = true;
-  // Corners are detected on this pyramid level (0 = full resolution; 1 = half, 4x cheaper).
-  int detection_level = 0;
+  // Corners are detected on this pyramid level (0 = full resolution; 1 = half, 4x cheaper), or
+  // with -1 on the coarsest level still kAutoDetectionWidth px wide (0 below 1280 px).
+  int detection_level = -1;
+  static constexpr int kAutoDetectionWidth = 640;
 
   template <class Visitor>
   void fields(Visitor& v) {
@@ -136,9 +138,12 @@ class FeatureTracker {
   PlaneHomographies rejectOutliers(std::vector<Track>& tracks) const;
   /// Where new corners may go: detectable, not `taken` by a kept track, away from the border.
   cv::Mat& detectionMask(const cv::Mat& taken);
-  /// Up to `wanted` corners where `allowed`, `spacing` px apart, from `detector`.
+  /// The pyramid level corners are detected on in images `width` px wide (detection_level).
+  int detectionLevel(int width) const;
+  /// Up to `wanted` corners where `allowed`, `spacing` px apart, from `detector`, on `level`.
   std::vector<cv::Point2f> detectCorners(CornerDetector& detector, const cv::Mat& image,
-                                         const cv::Mat& allowed, int wanted, double spacing) const;
+                                         const cv::Mat& allowed, int wanted, double spacing,
+                                         int level) const;
   void computeUniformRegions(const cv::Mat& mask);
   FeatureFrame publish(double t, double dt);
   Track newTrack(int label, cv::Point2f corner, cv::Point2f normalized, const cv::Mat& image);

@@ -104,26 +104,32 @@ struct FastTurnTracking {
   double kept;  // of the previous frame's features still in view, the share still tracked
   double median_px, p95_px;    // tracked pixel against the analytic projection
   double largest_turn_px = 0;  // largest image motion of a frame's centre by the turn alone
+  double even_births = 0;      // share of the new features born on even pixel coordinates
 };
 
-/// The first 3 s of the handheld profile (head turns peaking at 3 rad/s from the start), at
-/// 640x360: tracks from frame to frame, with the gyroscope's rotation prediction or without.
-FastTurnTracking handheldTracking(bool predict_rotation, const char* profile = "handheld") {
+/// The first `duration` s of the handheld profile (head turns peaking at 3 rad/s from the start),
+/// at `size` (640x360 unless given): tracks from frame to frame, with the gyroscope's rotation
+/// prediction or without, corners on `detection_level`.
+FastTurnTracking handheldTracking(bool predict_rotation, const char* profile = "handheld",
+                                  cv::Size size = {640, 360},
+                                  int detection_level = TrackerOptions{}.detection_level,
+                                  double duration = 3) {
   sim::SimConfig c = sim::SimConfig::profile(profile);
-  c.camera.width = 640;
-  c.camera.height = 360;
-  c.duration = 3;
+  c.camera.width = size.width;
+  c.camera.height = size.height;
+  c.duration = duration;
   sim::Simulator sim(c);
   const std::vector<ImuSample> imu = sim.imuStream();
   TrackerOptions options;
   options.predict_rotation = predict_rotation;
+  options.detection_level = detection_level;
   const CameraIntrinsics camera = sim.calibration().camera;
   FeatureTracker tracker(camera, options);
   const Eigen::Matrix3d R_BC = sim.calibration().T_BC.linear();
   std::map<int, Eigen::Vector3d> landmark;
   std::vector<double> errors;
   std::vector<int> previous;  // the previous frame's feature ids
-  size_t continued = 0, offered = 0;
+  size_t continued = 0, offered = 0, births = 0, even = 0;
   FastTurnTracking out;
   const auto times = sim.frameTimes();
   for (size_t k = 0; k < times.size(); ++k) {
@@ -148,6 +154,8 @@ FastTurnTracking handheldTracking(bool predict_rotation, const char* profile = "
     for (const auto& f : features.features) {
       if (f.track_length == 1) {
         landmark[f.id] = sim.castPixel(t, f.pixel.x(), f.pixel.y()).point;
+        ++births;
+        even += std::fmod(f.pixel.x(), 2.0) == 0 && std::fmod(f.pixel.y(), 2.0) == 0;
         continue;
       }
       tracked.insert(f.id);
@@ -169,6 +177,7 @@ FastTurnTracking handheldTracking(bool predict_rotation, const char* profile = "
     for (const auto& f : features.features) previous.push_back(f.id);
   }
   out.kept = offered ? static_cast<double>(continued) / offered : 0;
+  out.even_births = births ? static_cast<double>(even) / births : 0;
   if (!errors.empty()) {
     out.median_px = percentile(errors, 0.5);
     out.p95_px = percentile(errors, 0.95);
@@ -191,6 +200,25 @@ TEST(TrackerOnSimulator, TheGyroscopesPredictionFollowsFastTurns) {
   EXPECT_LT(unpredicted.kept, slow.kept - 0.1);
   EXPECT_GT(predicted.kept, slow.kept - 0.05);
   EXPECT_LT(predicted.median_px, 0.15);  // the static sequence's bar
+}
+
+TEST(TrackerOnSimulator, At1280PixelsWideCornersOnTheHalfResolutionImageTrackAsWell) {
+  // The default detection level at 1280x720 is 1 (0.81x the front-end's time, bench_frontend);
+  // the corners born there must track as well as full-resolution ones.
+  const cv::Size hd(1280, 720);
+  const FastTurnTracking half = handheldTracking(true, "handheld", hd, -1, 1.5);
+  const FastTurnTracking full = handheldTracking(true, "handheld", hd, 0, 1.5);
+  std::printf(
+      "handheld 1.5 s at 1280x720: corners at half resolution %.1f%% kept, error median "
+      "%.3f px, p95 %.3f px (%.0f%% born on even pixels); at full resolution %.1f%%, "
+      "%.3f px, %.3f px (%.0f%%)\n",
+      100 * half.kept, half.median_px, half.p95_px, 100 * half.even_births, 100 * full.kept,
+      full.median_px, full.p95_px, 100 * full.even_births);
+  EXPECT_EQ(half.even_births, 1.0);  // level-1 pixels are the even full-resolution ones
+  EXPECT_LT(full.even_births, 0.5);
+  EXPECT_GT(half.kept, full.kept - 0.02);
+  EXPECT_LT(half.median_px, 0.15);  // the static sequence's bar
+  EXPECT_LT(half.p95_px, 1.5 * full.p95_px);
 }
 
 /// Fraction of (feature, frame) pairs whose tracked pixel lies on a character.
