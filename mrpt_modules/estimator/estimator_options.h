@@ -57,6 +57,9 @@ struct EstimatorOptions {
   // Tried when no pair reaches init_parallax_px; 8 px at virtual_focal 460: 1°, the angle a
   // feature needs to be triangulated (min_triangulation_angle_deg).
   double init_fallback_parallax_px = 8.0;
+  // With calib.ini's [ground] camera_height: the window's ground plane (ground_in_window.h) holds
+  // every keyframe's camera this high above it, with this standard deviation (m; 0: not used).
+  double camera_height_sigma = 0.05;
   // The alignment's scale standard deviation relative to the scale (from its residual) may be at
   // most this: above it the window's accelerations do not make the scale observable. As after a
   // reset, the window refines the scale: the paper suite starts as with 0.03 (its take-off push
@@ -149,6 +152,7 @@ struct EstimatorOptions {
     RPVIO_OPTION(v, init_window_s);
     RPVIO_OPTION(v, init_parallax_px);
     RPVIO_OPTION(v, init_fallback_parallax_px);
+    RPVIO_OPTION(v, camera_height_sigma);
     RPVIO_OPTION(v, init_max_scale_sigma);
     RPVIO_OPTION(v, init_retry_s);
     RPVIO_OPTION(v, init_window_frames);

@@ -7,6 +7,7 @@
 
 #include "mrpt_modules/estimator/batch_refinement.h"
 #include "mrpt_modules/estimator/estimator_problem.h"
+#include "mrpt_modules/factors/camera_height_factor.h"
 #include "mrpt_modules/factors/homography_factor.h"
 #include "mrpt_modules/factors/imu_factor.h"
 #include "mrpt_modules/factors/parameter_blocks.h"
@@ -99,6 +100,13 @@ void SlidingWindowEstimator::optimize(bool plane_covariances) {
   }
   report_.planes = planes_with_factors.size();
   if (prior_) problem.AddResidualBlock(new MarginalizationFactor(prior_), nullptr, prior_->blocks);
+  ground_ = chooseGround(planes_with_factors);
+  if (ground_) {
+    PlaneEstimate& ground = planes_.estimates().at(ground_->plane);
+    for (auto& f : window_)
+      problem.AddResidualBlock(cameraHeightFactor(), nullptr, f->pose, mount_, ground.normal,
+                               ground.distance);
+  }
   std::vector<double*> held;
   for (auto& [mask, e] : planes_.estimates()) {
     if (!problem.HasParameterBlock(e.normal)) continue;
@@ -133,6 +141,19 @@ void SlidingWindowEstimator::optimize(bool plane_covariances) {
   // error of 0.17 m, EstimatorOnSimulator.PlaneMapCovariancesAreConsistent).
   for (double* block : held) problem.SetParameterBlockVariable(block);
   planes_.updateCovariances(problem, planes_with_factors);
+}
+
+std::optional<GroundInWindow> SlidingWindowEstimator::chooseGround(
+    const std::set<int>& planes) const {
+  if (calib_.camera_height <= 0 || options_.camera_height_sigma <= 0) return std::nullopt;
+  const Eigen::Vector3d newest_camera = camera(window_.back()->id).translation();
+  return groundInWindow(planes_.estimates(), planes, newest_camera, calib_.camera_height,
+                        options_.initializerOptions().max_ground_tilt_deg);
+}
+
+ceres::CostFunction* SlidingWindowEstimator::cameraHeightFactor() const {
+  return CameraHeightResidual::create(calib_.camera_height, ground_->side,
+                                      1 / options_.camera_height_sigma);
 }
 
 void SlidingWindowEstimator::rejectDepthOutliers() {
@@ -211,6 +232,12 @@ void SlidingWindowEstimator::marginalizeOldest() {
             loss, {oldest.pose, pose_of[o.frame], mount_, plane->normal, plane->distance});
     }
     remove.insert(track.inv_depth);
+  }
+  // The oldest keyframe's height above the ground stays in the prior with the ground plane.
+  if (ground_ && planes_.estimates().count(ground_->plane)) {
+    PlaneEstimate& ground = planes_.estimates().at(ground_->plane);
+    marginalizer.addFactor(std::unique_ptr<ceres::CostFunction>(cameraHeightFactor()), nullptr,
+                           {oldest.pose, mount_, ground.normal, ground.distance});
   }
   prior_ = marginalizer.marginalize(remove);
   flushPlanes();
@@ -374,6 +401,7 @@ void SlidingWindowEstimator::reset(const std::string& cause,
   features_.clear();
   prior_.reset();
   planes_.clear();
+  ground_.reset();
   bootstrapper_.restart(imu_since_good, status_);
 }
 

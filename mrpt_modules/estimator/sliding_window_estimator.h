@@ -28,6 +28,8 @@
 #include <string>
 #include <vector>
 
+#include "mrpt_modules/estimator/ground_in_window.h"
+
 #include "common/sensor_types.h"
 #include "mrpt_modules/core/run_messages.h"
 #include "mrpt_modules/estimator/batch_refinement.h"
@@ -116,6 +118,10 @@ class SlidingWindowEstimator {
   /// One solve of the window; with `plane_covariances`, the covariance of every plane with
   /// factors then (what the planes map weighs a visit by).
   void optimize(bool plane_covariances = false);
+  /// The ground among `planes` (those with homography factors), when the camera's height is known.
+  std::optional<GroundInWindow> chooseGround(const std::set<int>& planes) const;
+  /// A keyframe's camera-height factor on ground_ (camera_height_factor.h).
+  ceres::CostFunction* cameraHeightFactor() const;
   void rejectDepthOutliers();
   std::string failure(const double* predicted_pose) const;
   void marginalizeOldest();
@@ -143,6 +149,7 @@ class SlidingWindowEstimator {
   FeatureManager features_;
   std::shared_ptr<const MarginalizationPrior> prior_;
   WindowPlanes planes_;
+  std::optional<GroundInWindow> ground_;  // of the last solve, when camera-height factors held it
   PlaneVerifier plane_verifier_;
   PlaneDiscovery plane_discovery_;
   double screened_until_t_ = -1;  // the last frame screenPlanes saw

@@ -11,23 +11,13 @@
 #include "mrpt_modules/factors/homography_factor.h"
 #include "mrpt_modules/factors/pose_manifold.h"
 #include "tests/factors/jacobian_check.h"
+#include "tests/factors/random_poses.h"
 
 namespace rpvio {
 namespace {
 
-std::vector<double> poseBlock(const Eigen::Isometry3d& T) {
-  const Eigen::Quaterniond q(T.linear());
-  return {
-      T.translation().x(), T.translation().y(), T.translation().z(), q.x(), q.y(), q.z(), q.w()};
-}
-
-Eigen::Isometry3d randomPose(std::mt19937_64& rng, double translation) {
-  std::normal_distribution<double> g(0, 1);
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
-  T.translation() = translation * Eigen::Vector3d(g(rng), g(rng), g(rng));
-  return T;
-}
+using test::poseBlock;
+using test::randomPose;
 
 /// Two camera poses looking at a random plane, a plane point seen by both, and the factor blocks.
 struct Config {
