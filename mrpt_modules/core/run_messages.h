@@ -19,8 +19,9 @@ struct FrameDecoding {
 struct FrameReport {
   std::string state;  // "initializing", "tracking", "reset"
   double optimization_ms = 0;
-  size_t features = 0;  // features in use in the newest frame
-  size_t planes = 0;    // planes with homography factors
+  size_t features = 0;    // features in use in the newest frame
+  size_t planes = 0;      // planes with homography factors
+  int ground_plane = -1;  // the plane camera-height factors held the cameras over (−1: none)
 };
 
 /// Published by the estimator for every frame it processed, in order (a frame waiting for its IMU

@@ -101,6 +101,7 @@ void SlidingWindowEstimator::optimize(bool plane_covariances) {
   report_.planes = planes_with_factors.size();
   if (prior_) problem.AddResidualBlock(new MarginalizationFactor(prior_), nullptr, prior_->blocks);
   ground_ = chooseGround(planes_with_factors);
+  report_.ground_plane = ground_ ? ground_->plane : -1;
   if (ground_) {
     PlaneEstimate& ground = planes_.estimates().at(ground_->plane);
     for (auto& f : window_)

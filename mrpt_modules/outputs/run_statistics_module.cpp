@@ -102,6 +102,7 @@ void RunStatisticsModule::write(double wall) const {
     return (std::filesystem::path(output_dir_) / name).string();
   };
   std::vector<double> total_ms, optimization_ms, frontend_ms, load_ms, processing_ms;
+  long long camera_height_frames = 0;
   writeFileAtomically(path("stats.csv"), [&](std::ostream& s) {
     s << "t,load_ms,frontend_ms,optimization_ms,total_ms,features,planes,state\n";
     s << std::fixed;
@@ -111,6 +112,7 @@ void RunStatisticsModule::write(double wall) const {
       load_ms.push_back(rows_[k].load_ms);
       processing_ms.push_back(std::max(0.0, rows_[k].total_ms - rows_[k].load_ms));
       optimization_ms.push_back(report.optimization_ms);
+      camera_height_frames += report.ground_plane >= 0;
       frontend_ms.push_back(std::max(0.0, processing_ms.back() - rows_[k].estimator_ms));
       s << std::setprecision(6) << rows_[k].t << std::setprecision(3) << "," << load_ms.back()
         << "," << frontend_ms.back() << "," << rows_[k].estimator_ms << "," << total_ms.back()
@@ -134,6 +136,7 @@ void RunStatisticsModule::write(double wall) const {
       .integer("resets", static_cast<long long>(e.resets.size()))
       .objects("reset_causes", resetCausesJson(e.resets))
       .objects("planes_rejected_as_moving", planeRejectionsJson(e.rejected_planes))
+      .integer("camera_height_frames", camera_height_frames)
       .integer("planes_discovered", static_cast<long long>(e.planes_discovered))
       .objects("discovered_planes_accepted", discoveriesJson(e.discoveries, true))
       .objects("discovered_planes_rejected_as_moving", discoveriesJson(e.discoveries, false))

@@ -20,6 +20,7 @@ struct SimulatorRun {
   size_t resets = 0;
   double first_pose_t = -1;  // time of the first estimated pose (−1: never initialized)
   double path_length = 0;    // of the true trajectory, m
+  size_t tracked_frames = 0, camera_height_frames = 0;  // the latter with camera-height factors
   eval::PlaneMapAccuracy planes;
 };
 
@@ -68,6 +69,8 @@ SimulatorRun runOnSimulator(int characters, double duration, const RunSetup& set
     if (!truth.empty()) run.path_length += (gt.p - truth.back().p).norm();
     truth.push_back(gt);
     if (!state) continue;
+    ++run.tracked_frames;
+    run.camera_height_frames += estimator.lastReport().ground_plane >= 0;
     if (estimate.empty()) run.first_pose_t = t;
     StampedPose e;
     e.t = t;
@@ -144,6 +147,9 @@ TEST(EstimatorOnSimulator, TheCameraHeightHoldsTheCarsScale) {
       path, with.trajectory.ate.rmse, without.trajectory.ate.rmse, with.first_pose_t);
   EXPECT_LT(with.trajectory.ate.rmse, 0.005 * path);  // issue #36's target
   EXPECT_LT(with.trajectory.ate.rmse, 0.5 * without.trajectory.ate.rmse);
+  // The road is the window's ground all along; never without the factor.
+  EXPECT_GT(with.camera_height_frames, 0.95 * with.tracked_frames);
+  EXPECT_EQ(without.camera_height_frames, 0u);
   EXPECT_EQ(with.resets, 0u);
 }
 

@@ -20,10 +20,10 @@ PlaneEstimate plane(const Eigen::Vector3d& n, double d) {
 TEST(GroundInWindow, TheLevelPlaneBelowTheCameraAtItsHeight) {
   const Eigen::Vector3d camera(3, -2, 1.65);
   PlaneEstimates planes;
-  planes[1] = plane({1, 0, 0}, 10);       // a wall
-  planes[2] = plane({0, 0, 1}, 5);        // the ceiling, above
-  planes[3] = plane({0, 0, -1}, -0.8);    // a table top at z = 0.8, normal down
-  planes[4] = plane({0, 0, -1}, 0.02);    // the floor at z = −0.02, normal down
+  planes[1] = plane({1, 0, 0}, 10);     // a wall
+  planes[2] = plane({0, 0, 1}, 5);      // the ceiling, above
+  planes[3] = plane({0, 0, -1}, -0.8);  // a table top at z = 0.8, normal down
+  planes[4] = plane({0, 0, -1}, 0.02);  // the floor at z = −0.02, normal down
   const double slope = std::tan(15 * M_PI / 180);
   planes[5] = plane({slope, 0, 1}, slope * 3);  // a 15° ramp through (3, ·, 0)
   const std::set<int> all{1, 2, 3, 4, 5};

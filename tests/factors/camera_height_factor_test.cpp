@@ -71,8 +71,9 @@ TEST(CameraHeightFactor, JacobiansMatchCentralDifferencesInTangentSpace) {
   for (int k = 0; k < 50; ++k) {
     const Config c(rng);
     std::unique_ptr<ceres::CostFunction> f(CameraHeightResidual::create(1.65, 1, 20));
-    worst = std::max(worst, test::worstJacobianError(
-                                *f, c.blocks(), {&pose_manifold, &pose_manifold, &sphere, nullptr}));
+    worst =
+        std::max(worst, test::worstJacobianError(
+                            *f, c.blocks(), {&pose_manifold, &pose_manifold, &sphere, nullptr}));
   }
   std::printf("camera-height factor: worst relative Jacobian error over 50 configurations %.2e\n",
               worst);
