@@ -117,6 +117,16 @@ std::optional<InitializedWindow> Bootstrapper::tryInitialize() {
       }
       buffer_ = original;
       time_offset_ = original_offset;
+      // The corrected window can fail for its own reasons (the hand-held profile's first window
+      // loses its structure whatever the times): the offset is estimated again at the next
+      // initialization, up to kTimeOffsetAttempts windows, before an uncorrected one is taken.
+      if (++time_offset_attempts_ < kTimeOffsetAttempts) {
+        time_offset_estimated_ = false;
+        next_attempt_t_ = frames.back().t + options_.init_retry_s;
+        status_ = "time offset unconfirmed";
+        status_detail_ = time_offset_note_ + ": no initialization on the corrected times yet";
+        return std::nullopt;
+      }
       time_offset_note_ += ": not applied (no initialization on the corrected times)";
       status_ = "tracking";
       status_detail_ = init.reason;

@@ -102,6 +102,8 @@ class Bootstrapper {
   FrameScreen screen_;  // none: the frames as given
   double time_offset_ = 0;
   bool time_offset_estimated_ = false;
+  static constexpr int kTimeOffsetAttempts = 3;  // windows tried on corrected times
+  int time_offset_attempts_ = 0;
   std::string time_offset_note_;
   double next_attempt_t_ = -INFINITY;  // after an expensive failure (init_retry_s)
   size_t expensive_failures_ = 0;
