@@ -235,8 +235,8 @@ void SlidingWindowEstimator::marginalizeOldest() {
     remove.insert(track.inv_depth);
   }
   // The oldest keyframe's height above the ground stays in the prior with the ground plane.
-  if (ground_ && planes_.estimates().count(ground_->plane)) {
-    PlaneEstimate& ground = planes_.estimates().at(ground_->plane);
+  if (ground_) {
+    PlaneEstimate& ground = planes_.estimates().at(ground_->plane);  // optimize() just used it
     marginalizer.addFactor(std::unique_ptr<ceres::CostFunction>(cameraHeightFactor()), nullptr,
                            {oldest.pose, mount_, ground.normal, ground.distance});
   }

@@ -378,9 +378,9 @@ FeatureFrame FeatureTracker::track(double t, const cv::Mat& raw_image, const cv:
     std::vector<cv::Point2f> corners;
     // The dense planes first, each up to min_plane_features, on its own box and label; then the
     // other planes (a dense plane gets no more corners at the wider spacing).
+    const int step = 1 << level;  // a detection-level pixel, in base pixels
     for (const auto& [label, plane] : dense) {
       // The box starts on the detection level's pixel lattice, as the whole image's does.
-      const int step = 1 << level;
       const cv::Point corner(plane.box.x / step * step, plane.box.y / step * step);
       const cv::Rect box(corner, plane.box.br());  // from one corner to the other
       cv::compare(mask(box), label, on_plane_, cv::CMP_EQ);
