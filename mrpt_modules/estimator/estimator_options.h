@@ -37,6 +37,10 @@ struct EstimatorOptions {
   double min_saturated_accel = 11.8;  // m/s² (1.2 g: never a quantized value at rest)
   double min_saturated_gyro = 0.1;    // rad/s
   int max_iterations = 8;
+  // A frame whose second newest frame is not a keyframe (dropped after the solve) moves only the
+  // two newest frames, the rest of the window, its depths and planes held: the window is solved
+  // on keyframes only.
+  bool motion_only_between_keyframes = true;
   double max_solver_time_s = 0;  // 0: no time budget (a budget makes runs machine-dependent)
   double min_triangulation_angle_deg = 1.0;
   // Failure detection.
@@ -139,6 +143,7 @@ struct EstimatorOptions {
     RPVIO_OPTION(v, min_saturated_accel);
     RPVIO_OPTION(v, min_saturated_gyro);
     RPVIO_OPTION(v, max_iterations);
+    RPVIO_OPTION(v, motion_only_between_keyframes);
     RPVIO_OPTION(v, max_solver_time_s);
     RPVIO_OPTION(v, min_triangulation_angle_deg);
     RPVIO_OPTION(v, max_accel_bias);

@@ -61,15 +61,22 @@ CameraPoseLookup SlidingWindowEstimator::cameraLookup() const {
   return [this](uint64_t id) { return camera(id); };
 }
 
-void SlidingWindowEstimator::optimize(bool plane_covariances) {
+void SlidingWindowEstimator::optimize(WindowSolve solve) {
+  const size_t n = window_.size();
+  // Between keyframes only the two newest frames move (the second newest is dropped after this
+  // solve): a motion-only update against the rest of the window, its depths and planes held.
+  const bool motion_only = solve == WindowSolve::kNewestFrames && n >= 3;
+  const size_t first_free = motion_only ? n - 2 : 0;
+  std::set<uint64_t> free_frames;
+  for (size_t k = first_free; k < n; ++k) free_frames.insert(window_[k]->id);
   EstimatorProblem solve_problem(mount_, options_.cauchy_scale);
   ceres::Problem& problem = solve_problem.problem;
-  for (auto& f : window_) {
-    problem.AddParameterBlock(f->pose, 7, &solve_problem.pose_manifold);
-    problem.AddParameterBlock(f->speed_bias, 9);
+  for (size_t k = motion_only ? first_free - 1 : 0; k < n; ++k) {
+    problem.AddParameterBlock(window_[k]->pose, 7, &solve_problem.pose_manifold);
+    problem.AddParameterBlock(window_[k]->speed_bias, 9);
   }
   const Eigen::Vector3d g(0, 0, -calib_.imu.gravity);
-  for (size_t k = 1; k < window_.size(); ++k)
+  for (size_t k = std::max<size_t>(first_free, 1); k < n; ++k)
     problem.AddResidualBlock(new ImuFactor(window_[k]->imu_from_previous, g), nullptr,
                              window_[k - 1]->pose, window_[k - 1]->speed_bias, window_[k]->pose,
                              window_[k]->speed_bias);
@@ -79,13 +86,20 @@ void SlidingWindowEstimator::optimize(bool plane_covariances) {
   const uint64_t newest = window_.back()->id;
   report_.features = 0;
   std::set<int> planes_with_factors;
+  std::vector<double*> held;  // blocks the solve uses but does not move
   const std::set<int> constrained = planes_.constrained(features_);
   for (auto& [id, track] : features_.tracks()) {
     if (!inUse(track)) continue;
     const TrackObservation& anchor = track.observations.front();
     PlaneEstimate* plane = planes_.homographyPlane(track, constrained);
+    if (plane) planes_with_factors.insert(track.plane_id);
+    if (track.observations.back().frame == newest) ++report_.features;
+    const bool anchor_free = free_frames.count(anchor.frame) > 0;
+    bool track_added = false;
     for (size_t k = 1; k < track.observations.size(); ++k) {
       const TrackObservation& o = track.observations[k];
+      if (!anchor_free && !free_frames.count(o.frame)) continue;
+      track_added = true;
       problem.AddResidualBlock(
           ReprojectionResidual::create(anchor.normalized, o.normalized, weight),
           &solve_problem.loss, pose_of[anchor.frame], pose_of[o.frame], mount_, track.inv_depth);
@@ -95,20 +109,21 @@ void SlidingWindowEstimator::optimize(bool plane_covariances) {
             &solve_problem.loss, pose_of[anchor.frame], pose_of[o.frame], mount_, plane->normal,
             plane->distance);
     }
-    if (plane) planes_with_factors.insert(track.plane_id);
-    if (track.observations.back().frame == newest) ++report_.features;
+    if (motion_only && track_added) held.push_back(track.inv_depth);
   }
   report_.planes = planes_with_factors.size();
-  if (prior_) problem.AddResidualBlock(new MarginalizationFactor(prior_), nullptr, prior_->blocks);
+  if (prior_ && (!motion_only || std::any_of(prior_->blocks.begin(), prior_->blocks.end(),
+                                             [&](double* b) { return problem.HasParameterBlock(b); })))
+    problem.AddResidualBlock(new MarginalizationFactor(prior_), nullptr, prior_->blocks);
   ground_ = chooseGround(planes_with_factors);
   report_.ground_plane = ground_ ? ground_->plane : -1;
   if (ground_) {
     PlaneEstimate& ground = planes_.estimates().at(ground_->plane);
-    for (auto& f : window_)
-      problem.AddResidualBlock(cameraHeightFactor(), nullptr, f->pose, mount_, ground.normal,
-                               ground.distance);
+    for (size_t k = first_free; k < n; ++k)
+      problem.AddResidualBlock(cameraHeightFactor(), nullptr, window_[k]->pose, mount_,
+                               ground.normal, ground.distance);
   }
-  std::vector<double*> held;
+  std::vector<double*> held_planes;
   for (auto& [mask, e] : planes_.estimates()) {
     if (!problem.HasParameterBlock(e.normal)) continue;
     problem.SetManifold(e.normal, &solve_problem.sphere);
@@ -116,16 +131,24 @@ void SlidingWindowEstimator::optimize(bool plane_covariances) {
     // prior alone, linearized where the plane was, does not bound it (seed 2 C1: a crate face
     // walked 180° in 1.5 s, on 4–9 tracks). A well-tracked plane without factors (rpvio-single's
     // other planes) stays free: holding those biased rpvio-single (seed 1 C8 0.041 -> 0.063 m).
-    if (!constrained.count(mask)) held.insert(held.end(), {e.normal, e.distance});
+    if (motion_only || !constrained.count(mask))
+      held_planes.insert(held_planes.end(), {e.normal, e.distance});
   }
+  for (double* block : held_planes) problem.SetParameterBlockConstant(block);
   for (double* block : held) problem.SetParameterBlockConstant(block);
+  for (const auto& f : window_)
+    if (!free_frames.count(f->id))
+      for (double* block : {f->pose, f->speed_bias})
+        if (problem.HasParameterBlock(block)) problem.SetParameterBlockConstant(block);
   // Gauge: the window cannot observe its yaw and position, so the oldest frame keeps them (its
   // whole pose before a prior exists). Left free, each solve moved the window along them by what
   // the prior's linearization lends them (degrees of yaw within a second on the simulator).
-  if (prior_)
-    problem.SetManifold(window_.front()->pose, &solve_problem.gauge_manifold);
-  else
-    problem.SetParameterBlockConstant(window_.front()->pose);
+  if (!motion_only) {
+    if (prior_)
+      problem.SetManifold(window_.front()->pose, &solve_problem.gauge_manifold);
+    else
+      problem.SetParameterBlockConstant(window_.front()->pose);
+  }
 
   ceres::Solver::Options solver;
   solver.trust_region_strategy_type = ceres::DOGLEG;
@@ -136,11 +159,11 @@ void SlidingWindowEstimator::optimize(bool plane_covariances) {
   solver.num_threads = 1;
   ceres::Solver::Summary summary;
   ceres::Solve(solver, &problem, &summary);
-  if (!plane_covariances) return;
+  if (solve != WindowSolve::kWindowAndPlaneCovariances) return;
   // The covariances count the held planes' uncertainty (what the prior knows of them): held, they
   // would be taken as exact and the others' sigmas shrink (a wall's offset 0.16 -> 0.05 m, for an
   // error of 0.17 m, EstimatorOnSimulator.PlaneMapCovariancesAreConsistent).
-  for (double* block : held) problem.SetParameterBlockVariable(block);
+  for (double* block : held_planes) problem.SetParameterBlockVariable(block);
   planes_.updateCovariances(problem, planes_with_factors);
 }
 
@@ -370,7 +393,7 @@ void SlidingWindowEstimator::startWindow(const InitializedWindow& init) {
   planes_.choose(features_);
   features_.triangulate(cameraLookup(), options_.min_triangulation_angle_deg * M_PI / 180,
                         kMinDepth, kMaxDepth);
-  optimize();
+  optimize(WindowSolve::kWindow);
   rejectDepthOutliers();
 }
 
@@ -501,7 +524,12 @@ std::optional<StateEstimate> SlidingWindowEstimator::addFrame(
   planes_.initialize(features_, cameraLookup(), camera(window_.back()->id).translation(),
                      map_.planesMap());
   // The planes go to the map after the oldest frame's marginalization.
-  optimize(keyframe && window_.size() > options_.window_size + 1);
+  if (keyframe && window_.size() > options_.window_size + 1)
+    optimize(WindowSolve::kWindowAndPlaneCovariances);
+  else if (keyframe || !options_.motion_only_between_keyframes)
+    optimize(WindowSolve::kWindow);
+  else
+    optimize(WindowSolve::kNewestFrames);
   rejectDepthOutliers();
   if (report_.features >= options_.min_features) last_seen_features_t_ = frame.t;
   const std::string why = failure(predicted);

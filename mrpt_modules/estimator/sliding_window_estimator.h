@@ -14,7 +14,8 @@
 // and the marginalization prior. Each frame is optimized (Dogleg, DENSE_SCHUR); then the oldest
 // keyframe is marginalized when the second newest frame is a keyframe (parallax or few common
 // tracks), else the second newest is dropped (its IMU merged into the newest, its visual
-// measurements discarded).
+// measurements discarded). With motion_only_between_keyframes, a frame whose second newest is not
+// a keyframe solves only the two newest frames against the rest of the window held.
 //
 // Modes: every tracked feature (the front-end restricts them to the plane masks or not) has
 // reprojection factors; homography factors on no plane (vins-mono, mask-vins), the largest plane
@@ -115,9 +116,14 @@ class SlidingWindowEstimator {
   void moveWindow(const WorldShift& shift);
   Eigen::Isometry3d camera(uint64_t frame_id) const;
   CameraPoseLookup cameraLookup() const;
-  /// One solve of the window; with `plane_covariances`, the covariance of every plane with
-  /// factors then (what the planes map weighs a visit by).
-  void optimize(bool plane_covariances = false);
+  enum class WindowSolve {
+    kWindow,
+    kWindowAndPlaneCovariances,  // then the covariance of every plane with factors (what the
+                                 // planes map weighs a visit by)
+    kNewestFrames,               // the two newest frames against the rest held (motion only)
+  };
+  /// One solve of the window.
+  void optimize(WindowSolve solve);
   /// The ground among `planes` (those with homography factors), when the camera's height is known.
   std::optional<GroundInWindow> chooseGround(const std::set<int>& planes) const;
   /// A keyframe's camera-height factor on ground_ (camera_height_factor.h).
