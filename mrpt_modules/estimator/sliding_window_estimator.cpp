@@ -112,8 +112,9 @@ void SlidingWindowEstimator::optimize(WindowSolve solve) {
     if (motion_only && track_added) held.push_back(track.inv_depth);
   }
   report_.planes = planes_with_factors.size();
-  if (prior_ && (!motion_only || std::any_of(prior_->blocks.begin(), prior_->blocks.end(),
-                                             [&](double* b) { return problem.HasParameterBlock(b); })))
+  if (prior_ &&
+      (!motion_only || std::any_of(prior_->blocks.begin(), prior_->blocks.end(),
+                                   [&](double* b) { return problem.HasParameterBlock(b); })))
     problem.AddResidualBlock(new MarginalizationFactor(prior_), nullptr, prior_->blocks);
   ground_ = chooseGround(planes_with_factors);
   report_.ground_plane = ground_ ? ground_->plane : -1;

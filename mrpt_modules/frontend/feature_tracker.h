@@ -69,6 +69,10 @@ struct TrackerOptions {
   // with -1 on the coarsest level still kAutoDetectionWidth px wide (0 below 1280 px).
   int detection_level = -1;
   static constexpr int kAutoDetectionWidth = 640;
+  // FeatureTrackerModule: track image k+1 on a second thread while the modules after it work on
+  // frame k (the same outputs, one frame later on the bus; stats.csv's per-frame times then
+  // overlap).
+  bool pipelined = false;
 
   template <class Visitor>
   void fields(Visitor& v) {
@@ -92,6 +96,7 @@ struct TrackerOptions {
     RPVIO_OPTION(v, max_warp_scale);
     RPVIO_OPTION(v, local_warps);
     RPVIO_OPTION(v, detection_level);
+    RPVIO_OPTION(v, pipelined);
   }
   void validate(const OptionsLoader& loader) const;
   /// Reads the keys present in `section` (others keep their defaults).

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <utility>
 
 #include "mrpt_modules/core/run_messages.h"
 #include "mrpt_modules/imu/gyro_rotation.h"
@@ -24,6 +25,7 @@ void FeatureTrackerModule::initialize(const IniFile& config, const std::string& 
                                       PipelineContext& context) {
   const TrackerOptions options = TrackerOptions::load(config, section);
   use_masks_ = options.use_masks;
+  pipelined_ = options.pipelined;
   tracker_ = std::make_unique<FeatureTracker>(context.calibration.camera, options);
   bus_ = &context.bus;
   context.bus.subscribeSensor(labels::kCamera, [this](const auto& m) { onImage(m); });
@@ -34,6 +36,9 @@ void FeatureTrackerModule::initialize(const IniFile& config, const std::string& 
     time_offset_ = context.calibration.time_offset;
     context.bus.subscribeSensor(labels::kImu, [this](const auto& m) { onImu(m); });
   }
+  // The frame still in flight goes out before the others hear of the run's end (this module
+  // subscribes first when it is listed first, as the front-end is).
+  context.bus.subscribe<RunEnd>([this](const RunEnd&) { publishInFlight(); });
   setOptionsText("[" + section + "]\n" + options.describe());
 }
 
@@ -63,7 +68,7 @@ void FeatureTrackerModule::onImu(const ObservationMessage& m) {
       toImuSample(dynamic_cast<const mrpt::obs::CObservationIMU&>(*m.observation), *m.reader));
 }
 
-FeatureFrame FeatureTrackerModule::track(double t, const cv::Mat& image, const cv::Mat& mask) {
+std::optional<Eigen::Matrix3d> FeatureTrackerModule::gyroRotationTo(double t) {
   // The camera's rotation since the previous image (gyro_rotation.h). Only samples before this
   // image's time take part (the last one's rate held up to it): which later ones have arrived
   // depends on how a rawlog orders equal times, the result must not.
@@ -79,7 +84,41 @@ FeatureFrame FeatureTrackerModule::track(double t, const cv::Mat& image, const c
   const auto first_needed = std::upper_bound(gyro_.begin(), gyro_.end(), to,
                                              [](double x, const ImuSample& s) { return x < s.t; });
   if (first_needed != gyro_.begin()) gyro_.erase(gyro_.begin(), first_needed - 1);
-  return tracker_->track(t, image, mask, R_cur_prev ? &*R_cur_prev : nullptr);
+  return R_cur_prev;
+}
+
+void FeatureTrackerModule::track(double t, const cv::Mat& image, const cv::Mat& mask, bool on_bus) {
+  const auto R_cur_prev = gyroRotationTo(t);  // here: gyro_ grows on this thread
+  auto run = [this, t, image, mask, R_cur_prev] {
+    Tracked r{tracker_->track(t, image, mask, R_cur_prev ? &*R_cur_prev : nullptr), {}};
+    r.warnings = tracker_->takeWarnings();
+    return r;
+  };
+  InFlight next{t, load_ms_, on_bus, {}};
+  if (on_bus) load_ms_ = 0;  // else counted with the next published frame
+  if (!pipelined_) {
+    next.tracked = std::async(std::launch::deferred, run);
+    publish(std::move(next));
+    return;
+  }
+  std::optional<InFlight> previous = std::exchange(in_flight_, std::nullopt);
+  if (previous) previous->tracked.wait();  // the tracker takes one image at a time
+  next.tracked = std::async(std::launch::async, run);
+  in_flight_ = std::move(next);
+  if (previous) publish(std::move(*previous));
+}
+
+void FeatureTrackerModule::publishInFlight() {
+  if (auto done = std::exchange(in_flight_, std::nullopt)) publish(std::move(*done));
+}
+
+void FeatureTrackerModule::publish(InFlight done) {
+  const Tracked tracked = done.tracked.get();
+  for (const auto& w : tracked.warnings)
+    MRPT_LOG_WARN_STREAM("t=" << timeText(done.t) << ": " << w);
+  if (!done.on_bus) return;
+  bus_->publish(FrameDecoding{done.t, done.load_ms});
+  bus_->publish(tracked.frame);
 }
 
 void FeatureTrackerModule::process(double t) {
@@ -93,17 +132,12 @@ void FeatureTrackerModule::process(double t) {
   }
   // Images without a mask by the time a later image is complete get none (said once).
   for (auto it = pending_images_.begin(); it != image;) {
-    track(it->first, it->second, cv::Mat());
+    track(it->first, it->second, cv::Mat(), false);
     it = pending_images_.erase(it);
   }
-  const FeatureFrame frame = track(t, image->second, mask);
+  track(t, image->second, mask, true);
   pending_images_.erase(image);
   pending_masks_.erase(pending_masks_.begin(), pending_masks_.upper_bound(t));
-  for (const auto& w : tracker_->takeWarnings())
-    MRPT_LOG_WARN_STREAM("t=" << timeText(t) << ": " << w);
-  bus_->publish(FrameDecoding{t, load_ms_});
-  load_ms_ = 0;
-  bus_->publish(frame);
 }
 
 void FeatureTrackerModule::finish() {

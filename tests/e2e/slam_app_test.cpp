@@ -113,6 +113,40 @@ TEST(SlamApp, TruncatedRawlogKeepsTheFramesBeforeIt) {
   EXPECT_TRUE(std::filesystem::exists(dir.file("cut/planes.yaml")));
 }
 
+// Pipelined (the front-end tracks the next image on a second thread): the same outputs, to the
+// byte, on a whole rawlog and on one cut short (the frame in flight at the end is not lost).
+TEST(SlamApp, PipelinedRunsGiveTheSameOutputs) {
+  test::TempDir dir;
+  sim::SimConfig config;
+  config.duration = 6.0;
+  config.scene.characters = 2;
+  sim::writeSequence(config, dir.file("seq"));
+  std::string ini = test::readFile(std::string(RPVIO_SOURCE_DIR) + "/config/rpvio-multi.ini");
+  const std::string section = "[FeatureTrackerModule]\n";
+  ASSERT_NE(ini.find(section), std::string::npos);
+  ini.insert(ini.find(section) + section.size(), "pipelined = true\n");
+  std::ofstream(dir.file("pipelined.ini")) << ini;
+  const std::string sequential = slamCommand("rpvio-multi", dir.file("seq"));
+  std::string pipelined = sequential;
+  const std::string mode_config = std::string(RPVIO_SOURCE_DIR) + "/config/rpvio-multi.ini";
+  pipelined.replace(pipelined.find(mode_config), mode_config.size(), dir.file("pipelined.ini"));
+  const std::string rawlog = dir.file("seq/seq.rawlog");
+  std::string out;
+  for (const std::string run : {"whole", "cut"}) {
+    if (run == "cut") std::filesystem::resize_file(rawlog, std::filesystem::file_size(rawlog) / 2);
+    const int code = run == "whole" ? 0 : 2;
+    ASSERT_EQ(test::runCommand(sequential + dir.file(run + "_sequential"), out), code) << out;
+    ASSERT_EQ(test::runCommand(pipelined + dir.file(run + "_pipelined"), out), code) << out;
+    EXPECT_NE(test::readFile(dir.file(run + "_pipelined/config_used.ini")).find("pipelined = true"),
+              std::string::npos);
+    for (const char* output : {"trajectory.tum", "planes.yaml", "planes.ply"})
+      EXPECT_EQ(test::readFile(dir.file(run + "_sequential/") + output),
+                test::readFile(dir.file(run + "_pipelined/") + output))
+          << run << " " << output;
+    EXPECT_GT(readTum(dir.file(run + "_pipelined/trajectory.tum")).size(), 10u) << run;
+  }
+}
+
 /// A copy of a rawlog without the observations of `label`, its masks stamped `mask_delay` s later
 /// (the observations written in time order).
 void copyWithout(const std::string& from, const std::string& to, const std::string& label,
