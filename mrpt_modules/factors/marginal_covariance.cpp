@@ -6,6 +6,7 @@
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <set>
+#include <vector>
 
 namespace rpvio {
 
@@ -40,26 +41,38 @@ std::optional<Eigen::MatrixXd> marginalCovariance(ceres::Problem& problem,
   evaluate.apply_loss_function = true;
   ceres::CRSMatrix crs;
   if (!problem.Evaluate(evaluate, nullptr, nullptr, nullptr, &crs)) return std::nullopt;
-  // H = JᵀJ, row by row (a row has ~15 non-zeros: far cheaper than a sparse product).
-  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(crs.num_cols, crs.num_cols);
+  // H = JᵀJ, row by row (a row has ~15 non-zeros: far cheaper than a sparse product). The kept
+  // columns' block S is dense; the scalar blocks' couplings (H_ek) and their own block (H_ee,
+  // diagonal for inverse depths) stay sparse: a dense H would be (kept + ~10³ depths)².
+  const int eliminated = crs.num_cols - dense_size;
+  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(dense_size, dense_size);
+  std::vector<Eigen::Triplet<double>> ek, ee;  // in row order: the sums' order of a dense H
+  const auto add = [&](int row, int col, double h) {
+    if (row < dense_size && col < dense_size)
+      S(row, col) += h;
+    else if (row >= dense_size && col >= dense_size)
+      ee.emplace_back(row - dense_size, col - dense_size, h);
+    else if (row >= dense_size)
+      ek.emplace_back(row - dense_size, col, h);  // its transpose is not needed
+  };
   for (int row = 0; row < crs.num_rows; ++row)
     for (int a = crs.rows[row]; a < crs.rows[row + 1]; ++a) {
-      H(crs.cols[a], crs.cols[a]) += crs.values[a] * crs.values[a];
+      add(crs.cols[a], crs.cols[a], crs.values[a] * crs.values[a]);
       for (int b = a + 1; b < crs.rows[row + 1]; ++b) {
         const double h = crs.values[a] * crs.values[b];
-        H(crs.cols[a], crs.cols[b]) += h;
-        H(crs.cols[b], crs.cols[a]) += h;
+        add(crs.cols[a], crs.cols[b], h);
+        add(crs.cols[b], crs.cols[a], h);
       }
     }
 
   // Schur complement of the scalar blocks, sparse (a depth touches a few poses):
   // S = H_kk − H_ke H_ee⁻¹ H_ek.
-  const int eliminated = crs.num_cols - dense_size;
-  Eigen::MatrixXd S = H.topLeftCorner(dense_size, dense_size);
   if (eliminated > 0) {
-    const Eigen::SparseMatrix<double> H_ek =
-        H.bottomLeftCorner(eliminated, dense_size).sparseView();
-    Eigen::SparseMatrix<double> H_ee = H.bottomRightCorner(eliminated, eliminated).sparseView();
+    Eigen::SparseMatrix<double> H_ek(eliminated, dense_size), H_ee(eliminated, eliminated);
+    H_ek.setFromTriplets(ek.begin(), ek.end());
+    H_ee.setFromTriplets(ee.begin(), ee.end());
+    H_ek.prune(0.0);  // entries that sum to exactly 0 are not structure
+    H_ee.prune(0.0);
     for (int i = 0; i < eliminated; ++i)
       H_ee.coeffRef(i, i) += kFree * std::max(H_ee.coeff(i, i), 1.0);
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(H_ee);
