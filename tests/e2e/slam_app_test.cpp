@@ -30,12 +30,17 @@ std::string slamCommand(const std::string& mode, const std::string& sequence_dir
          (rawlog.empty() ? sequence_dir + "/seq.rawlog" : rawlog) + " --quiet --out ";
 }
 
+/// A simulated sequence of `duration` s with `characters` characters in `dir`/seq.
+void writeSimulatedSequence(const test::TempDir& dir, double duration, int characters = 0) {
+  sim::SimConfig config;
+  config.duration = duration;
+  config.scene.characters = characters;
+  sim::writeSequence(config, dir.file("seq"));
+}
+
 TEST(SlamApp, WritesOutputsAndIsDeterministic) {
   test::TempDir dir;
-  sim::SimConfig config;
-  config.duration = 6.0;
-  config.scene.characters = 2;
-  sim::writeSequence(config, dir.file("seq"));
+  writeSimulatedSequence(dir, 6.0, 2);
   const std::string slam = slamCommand("rpvio-single", dir.file("seq"));
   std::string out;
   ASSERT_EQ(test::runCommand(slam + dir.file("a"), out), 0) << out;
@@ -87,9 +92,7 @@ TEST(SlamApp, WritesOutputsAndIsDeterministic) {
 
 TEST(SlamApp, TruncatedRawlogKeepsTheFramesBeforeIt) {
   test::TempDir dir;
-  sim::SimConfig config;
-  config.duration = 5.0;
-  sim::writeSequence(config, dir.file("seq"));
+  writeSimulatedSequence(dir, 5.0);
   const std::string rawlog = dir.file("seq/seq.rawlog");
   const std::string slam = slamCommand("rpvio-single", dir.file("seq"));
   std::string out;
@@ -117,10 +120,7 @@ TEST(SlamApp, TruncatedRawlogKeepsTheFramesBeforeIt) {
 // byte, on a whole rawlog and on one cut short (the frame in flight at the end is not lost).
 TEST(SlamApp, PipelinedRunsGiveTheSameOutputs) {
   test::TempDir dir;
-  sim::SimConfig config;
-  config.duration = 6.0;
-  config.scene.characters = 2;
-  sim::writeSequence(config, dir.file("seq"));
+  writeSimulatedSequence(dir, 6.0, 2);
   std::string ini = test::readFile(std::string(RPVIO_SOURCE_DIR) + "/config/rpvio-multi.ini");
   const std::string section = "[FeatureTrackerModule]\n";
   ASSERT_NE(ini.find(section), std::string::npos);
@@ -176,9 +176,7 @@ void copyWithout(const std::string& from, const std::string& to, const std::stri
 
 TEST(SlamApp, ARawlogWithoutWhatTheModeNeedsIsBadInputNamingIt) {
   test::TempDir dir;
-  sim::SimConfig config;
-  config.duration = 1.0;
-  sim::writeSequence(config, dir.file("seq"));
+  writeSimulatedSequence(dir, 1.0);
   const Calibration calibration = loadCalibration(dir.file("seq/calib.ini"));
   copyWithout(dir.file("seq/seq.rawlog"), dir.file("nomask/seq.rawlog"), labels::kPlaneMask,
               calibration);
@@ -222,9 +220,7 @@ TEST(SlamApp, ARawlogWhoseFramesNeverReachTheEstimatorIsBadInput) {
   // Every mask 1 ms after its image: no image is ever paired with its mask, so no frame is
   // processed; the run says so on one line and exits 2.
   test::TempDir dir;
-  sim::SimConfig config;
-  config.duration = 1.0;
-  sim::writeSequence(config, dir.file("seq"));
+  writeSimulatedSequence(dir, 1.0);
   copyWithout(dir.file("seq/seq.rawlog"), dir.file("late/seq.rawlog"), "",
               loadCalibration(dir.file("seq/calib.ini")), 0.001);
   std::string out;
@@ -244,9 +240,7 @@ TEST(SlamApp, AnOutputThatCannotBeWrittenIsBadInputAndNothingIsHalfWritten) {
   // trajectory.tum's temporary name is taken by a folder: that output cannot be written (as on a
   // full disk). One line naming it, exit 2; the outputs written are whole, none is left temporary.
   test::TempDir dir;
-  sim::SimConfig config;
-  config.duration = 3.0;
-  sim::writeSequence(config, dir.file("seq"));
+  writeSimulatedSequence(dir, 3.0);
   std::filesystem::create_directories(dir.file("o/trajectory.tum.tmp"));
   std::string out;
   EXPECT_EQ(test::runCommand(slamCommand("rpvio-single", dir.file("seq")) + dir.file("o"), out), 2)
@@ -269,9 +263,7 @@ TEST(SlamApp, AnOutputThatCannotBeWrittenIsBadInputAndNothingIsHalfWritten) {
 
 TEST(SlamApp, AnOutputPathThatCannotBeAFolderIsBadInput) {
   test::TempDir dir;
-  sim::SimConfig config;
-  config.duration = 1.0;
-  sim::writeSequence(config, dir.file("seq"));
+  writeSimulatedSequence(dir, 1.0);
   const std::string slam = slamCommand("rpvio-single", dir.file("seq"));
   std::string out;
   test::writeText(dir.file("a-file"), "keep me\n");
@@ -289,9 +281,7 @@ TEST(SlamApp, AnOutputPathThatCannotBeAFolderIsBadInput) {
 
 TEST(SlamApp, ARunThatNeverInitializesSaysWhy) {
   test::TempDir dir;
-  sim::SimConfig config;
-  config.duration = 1.0;  // shorter than the 2 s initialization window
-  sim::writeSequence(config, dir.file("seq"));
+  writeSimulatedSequence(dir, 1.0);  // shorter than the 2 s initialization window
   std::string out;
   ASSERT_EQ(test::runCommand(slamCommand("rpvio-single", dir.file("seq")) + dir.file("o"), out), 0)
       << out;
