@@ -137,10 +137,9 @@ void SlidingWindowEstimator::optimize(WindowSolve solve) {
   }
   for (double* block : held_planes) problem.SetParameterBlockConstant(block);
   for (double* block : held) problem.SetParameterBlockConstant(block);
-  for (const auto& f : window_)
-    if (!free_frames.count(f->id))
-      for (double* block : {f->pose, f->speed_bias})
-        if (problem.HasParameterBlock(block)) problem.SetParameterBlockConstant(block);
+  for (size_t k = 0; k < first_free; ++k)
+    for (double* block : {window_[k]->pose, window_[k]->speed_bias})
+      if (problem.HasParameterBlock(block)) problem.SetParameterBlockConstant(block);
   // Gauge: the window cannot observe its yaw and position, so the oldest frame keeps them (its
   // whole pose before a prior exists). Left free, each solve moved the window along them by what
   // the prior's linearization lends them (degrees of yaw within a second on the simulator).
