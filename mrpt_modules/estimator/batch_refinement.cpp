@@ -173,11 +173,24 @@ bool BatchRefinement::solve() {
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::SPARSE_SCHUR;
   solver.max_num_iterations = options_.max_iterations;
+  solver.initial_trust_region_radius = options_.initial_trust_region_radius;
   // Eliminate the inverse depths only. Left to Ceres, the eliminated independent set also took
   // IMU speed/bias blocks, whose elimination fills the reduced system: 3x slower on an 80 s
-  // sequence (docs/notes/2026-11-28-speed.md).
+  // sequence (docs/notes/2026-11-28-speed.md). Eliminating a depth couples every keyframe that
+  // observes the track; one followed over hundreds of keyframes (a point in view for a whole
+  // lap) makes the reduced system dense across that span. Such a depth stays in the reduced
+  // system instead, one column that its fill-reducing ordering puts late.
+  std::map<uint64_t, int> index_of;
+  for (size_t i = 0; i < keyframes.size(); ++i) index_of[keyframes[i].id] = static_cast<int>(i);
   solver.linear_solver_ordering = std::make_shared<ceres::ParameterBlockOrdering>();
-  for (double* depth : depths) solver.linear_solver_ordering->AddElementToGroup(depth, 0);
+  for (size_t j = 0; j < usable.size(); ++j) {
+    const auto& observations = usable[j].first->observations;
+    const int span =
+        index_of.at(observations.back().frame) - index_of.at(observations.front().frame);
+    const bool eliminated = span <= options_.max_eliminated_track_span;
+    solver.linear_solver_ordering->AddElementToGroup(depths[j], eliminated ? 0 : 1);
+    if (!eliminated) ++long_tracks_;
+  }
   std::vector<double*> all_blocks;
   problem.GetParameterBlocks(&all_blocks);
   for (double* block : all_blocks)
@@ -190,9 +203,9 @@ bool BatchRefinement::solve() {
   out << "batch refinement: " << keyframes.size() << " keyframes in " << segments_
       << " IMU-chained segment(s), " << usable.size() << " tracks, " << plane_blocks.size()
       << " planes, " << reprojections << " reprojection and " << homographies
-      << " homography factors; cost " << summary.initial_cost << " -> " << summary.final_cost
-      << " in " << summary.iterations.size() << " iterations, " << summary.total_time_in_seconds
-      << " s";
+      << " homography factors (" << long_tracks_ << " long tracks not eliminated); cost "
+      << summary.initial_cost << " -> " << summary.final_cost << " in " << summary.iterations.size()
+      << " iterations, " << summary.total_time_in_seconds << " s";
   report_ = out.str();
   seconds_ = summary.total_time_in_seconds;
   if (!summary.IsSolutionUsable()) return false;

@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <random>
 
 #include "mrpt_modules/estimator/batch_refinement.h"
 #include "mrpt_modules/factors/parameter_blocks.h"
@@ -28,8 +29,11 @@ struct Scenario {
 /// The keyframes start from the truth tilted by `tilt_deg` about the first keyframe (a causal
 /// estimate whose gravity direction was off, everything else consistent with it), the planes
 /// tilted by 1 deg more and moved by 5 cm. With `break_after`, the IMU chain breaks after the
-/// keyframe at that time (as at a reset).
-void build(Scenario& s, double tilt_deg, double break_after = -1) {
+/// keyframe at that time (as at a reset). `noise`: the observations' Gaussian noise (normalized
+/// image units, a fixed seed).
+void build(Scenario& s, double tilt_deg, double break_after = -1, double noise = 0) {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> gauss(0, noise);
   sim::SimConfig config;
   config.duration = kDuration;
   config.imu_noise = false;
@@ -68,7 +72,7 @@ void build(Scenario& s, double tilt_deg, double break_after = -1) {
       TrackedFeature f;
       f.id = static_cast<int>(k);
       f.plane_id = landmarks[k].label;
-      f.normalized = u;
+      f.normalized = noise > 0 ? Eigen::Vector2d(u.x() + gauss(rng), u.y() + gauss(rng)) : u;
       frame.features.push_back(f);
     }
     features.addFrame(id, frame);
@@ -115,10 +119,10 @@ void build(Scenario& s, double tilt_deg, double break_after = -1) {
 
 struct Errors {
   double position_m = 0, rotation_deg = 0, normal_deg = 0, offset_m = 0;
+  size_t long_tracks = 0;  // inverse depths not eliminated
 };
 
-Errors solveAndCompare(Scenario& s, size_t segments) {
-  BatchRefinementOptions options;
+Errors solveAndCompare(Scenario& s, size_t segments, BatchRefinementOptions options = {}) {
   options.weight = 320;  // exact features: any weight
   BatchRefinement batch(
       s.archive, s.mount, [](int label) { return label; }, s.planes, options);
@@ -126,6 +130,7 @@ Errors solveAndCompare(Scenario& s, size_t segments) {
   EXPECT_EQ(batch.segments(), segments);
   std::printf("%s\n", batch.report().c_str());
   Errors e;
+  e.long_tracks = batch.longTracks();
   const auto refined = s.archive.trajectory();
   for (size_t k = 0; k < refined.size(); ++k) {
     const Eigen::Isometry3d T = poseIsometry(refined[k].pose);
@@ -166,6 +171,31 @@ TEST(BatchRefinement, TwoSegmentsAfterABrokenChain) {
   Scenario s;
   build(s, 0.0, 4.0);
   expectTruth(solveAndCompare(s, 2));
+}
+
+// Which inverse depths the Schur complement eliminates changes the cost of a step, not the step:
+// with every track (seen over 12 keyframes) kept in the reduced system, the solution is the same.
+// The observations carry 1 px of noise, so the solution is not the truth both would find anyway.
+TEST(BatchRefinement, LongTracksKeptInTheReducedSystemGiveTheSameSolution) {
+  Scenario eliminated, kept;
+  const double one_pixel = 1.0 / 460;
+  build(eliminated, 0.5, -1, one_pixel);
+  build(kept, 0.5, -1, one_pixel);
+  const Errors all_eliminated = solveAndCompare(eliminated, 1);
+  EXPECT_EQ(all_eliminated.long_tracks, 0u);
+  EXPECT_GT(all_eliminated.position_m, 1e-4);
+  BatchRefinementOptions keep_all;
+  keep_all.max_eliminated_track_span = 4;
+  const Errors all_kept = solveAndCompare(kept, 1, keep_all);
+  EXPECT_GT(all_kept.long_tracks, 100u);
+  const auto a = eliminated.archive.trajectory(), b = kept.archive.trajectory();
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t k = 0; k < a.size(); ++k)
+    EXPECT_LT(
+        (poseIsometry(a[k].pose).translation() - poseIsometry(b[k].pose).translation()).norm(),
+        1e-6);
+  for (const auto& [label, p] : eliminated.planes)
+    EXPECT_NEAR(p.distance[0], kept.planes.at(label).distance[0], 1e-6);
 }
 
 }  // namespace
