@@ -50,6 +50,7 @@ PlaneDiscoveryOptions EstimatorOptions::planeDiscoveryOptions() const {
   o.min_parallax_px = discover_min_parallax_px;
   o.epipolar_px = discover_epipolar_px;
   o.plane_px = discover_plane_px;
+  o.plane_sigmas = discover_plane_sigmas;
   o.min_features = discover_min_features;
   o.max_planes = discover_max_planes;
   o.confirm_after = discover_confirm_after;

@@ -116,13 +116,16 @@ struct EstimatorOptions {
   // discover_span_s apart with discover_min_parallax_px of rotation-compensated parallax are
   // compared; a feature farther than discover_epipolar_px (px at virtual_focal) from its epipolar
   // line moves; discover_plane_px is the transfer error within which a feature lies on a plane of
-  // at least discover_min_features. A plane found in discover_confirm_after checks is static; one
-  // whose features mostly moved in discover_reject_after consecutive checks is rejected.
+  // at least discover_min_features, at most discover_plane_sigmas standard deviations of the
+  // check's track noise (0: discover_plane_px alone). A plane found in discover_confirm_after
+  // checks is static; one whose features mostly moved in discover_reject_after consecutive checks
+  // is rejected.
   bool discover_planes = false;
   double discover_span_s = 0.3;
   double discover_min_parallax_px = 4;
   double discover_epipolar_px = 0.5;
   double discover_plane_px = 0.5;
+  double discover_plane_sigmas = 3;
   size_t discover_min_features = 10;
   int discover_max_planes = 4;
   int discover_confirm_after = 3;
@@ -182,6 +185,7 @@ struct EstimatorOptions {
     RPVIO_OPTION(v, discover_min_parallax_px);
     RPVIO_OPTION(v, discover_epipolar_px);
     RPVIO_OPTION(v, discover_plane_px);
+    RPVIO_OPTION(v, discover_plane_sigmas);
     RPVIO_OPTION(v, discover_min_features);
     RPVIO_OPTION(v, discover_max_planes);
     RPVIO_OPTION(v, discover_confirm_after);

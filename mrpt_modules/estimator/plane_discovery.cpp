@@ -181,7 +181,12 @@ PlaneDiscovery::CheckResult PlaneDiscovery::check(const FeatureFrame& j, const F
   result.t = inverse_depths.empty() || median(inverse_depths) >= 0 ? *t : Eigen::Vector3d(-*t);
   result.judged = true;
 
-  const double plane_limit = options_.plane_px / options_.focal_px;
+  double plane_limit = options_.plane_px / options_.focal_px;
+  if (options_.plane_sigmas > 0) {
+    std::vector<double> distances;
+    for (size_t i : still) distances.push_back(epipolarDistance(pairs[i], *t));
+    plane_limit = std::min(plane_limit, options_.plane_sigmas * median(distances) / 0.6745);
+  }
   const auto members = [&](const Eigen::Vector3d& m) {
     std::vector<size_t> in;
     for (size_t i : still)

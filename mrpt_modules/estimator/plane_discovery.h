@@ -13,8 +13,12 @@
 //     y ~ x + t (mᵀ x) with m = |T| R_kj n / d (the homography H = R + T nᵀ/d with R and the
 //     direction of T known), i.e. (y × t)(xᵀ m) = −(y × x): linear in m, three points determine
 //     it. Sequential RANSAC (samples drawn among a point's image neighbours, a plane being a
-//     region) takes the largest plane within plane_px transfer error, refines m by least squares,
-//     removes its features and repeats.
+//     region) takes the largest plane within the transfer error limit, refines m by least
+//     squares, removes its features and repeats. The limit is plane_sigmas standard deviations
+//     of the tracks' noise, σ = median epipolar distance / 0.6745 of the static features (the
+//     median absolute deviation of a zero-mean normal), capped at plane_px: a feature slightly
+//     off the plane, or whose KLT window straddles an edge, stays off it when the tracks are
+//     precise.
 //  3. Planes found in a check are matched to the segments of earlier checks by their features'
 //     labels (the segment most of them carry, if at least a third of the plane's features do),
 //     else start a new segment. A segment becomes a static plane once found in confirm_after
@@ -40,7 +44,8 @@ struct PlaneDiscoveryOptions {
   double span_s = 0.3;         // frames this far apart are compared
   double min_parallax_px = 4;  // rotation-compensated, median over the compared features
   double epipolar_px = 0.5;    // farther from its epipolar line: the feature moves
-  double plane_px = 0.5;       // transfer error within which a feature lies on a plane
+  double plane_px = 0.5;       // transfer error within which a feature lies on a plane ...
+  double plane_sigmas = 3;     // ... and within this many σ of the tracks' noise (0: plane_px)
   size_t min_features = 10;    // per plane and check
   int max_planes = 4;          // found per check
   int confirm_after = 3;       // checks finding a segment before it is a static plane
