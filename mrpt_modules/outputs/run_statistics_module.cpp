@@ -108,15 +108,19 @@ void RunStatisticsModule::write(double wall) const {
     s << std::fixed;
     for (size_t k = 0; k < rows_.size(); ++k) {
       const FrameReport report = k < reports_.size() ? reports_[k] : FrameReport{"no estimator"};
-      total_ms.push_back(rows_[k].total_ms);
-      load_ms.push_back(rows_[k].load_ms);
-      processing_ms.push_back(std::max(0.0, rows_[k].total_ms - rows_[k].load_ms));
+      // A frame's cost: the front-end's part of the wall time since the previous frame (without
+      // the estimator's work in it, which may be another frame's: one still waiting for its IMU
+      // data is optimized after the next is tracked) and the estimator's time on this frame.
+      const FrameRow& row = rows_[k];
+      load_ms.push_back(row.load_ms);
+      frontend_ms.push_back(std::max(0.0, row.wall_ms - row.load_ms - row.estimator_ms));
       optimization_ms.push_back(report.optimization_ms);
+      processing_ms.push_back(frontend_ms.back() + optimization_ms.back());
+      total_ms.push_back(load_ms.back() + processing_ms.back());
       camera_height_frames += report.ground_plane >= 0;
-      frontend_ms.push_back(std::max(0.0, processing_ms.back() - rows_[k].estimator_ms));
-      s << std::setprecision(6) << rows_[k].t << std::setprecision(3) << "," << load_ms.back()
-        << "," << frontend_ms.back() << "," << rows_[k].estimator_ms << "," << total_ms.back()
-        << "," << report.features << "," << report.planes << "," << report.state << "\n";
+      s << std::setprecision(6) << row.t << std::setprecision(3) << "," << load_ms.back() << ","
+        << frontend_ms.back() << "," << optimization_ms.back() << "," << total_ms.back() << ","
+        << report.features << "," << report.planes << "," << report.state << "\n";
     }
   });
   const double sequence_s = rows_.size() < 2 ? 0 : rows_.back().t - rows_.front().t;

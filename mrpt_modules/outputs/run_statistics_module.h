@@ -1,9 +1,9 @@
 #pragma once
 // Output module: the run's statistics, written into the pipeline's output folder at the end.
-//   stats.csv     per frame (FeatureFrame): t, load_ms (FrameDecoding), frontend_ms,
-//                 optimization_ms (the EstimatorFrames processed since the previous frame),
-//                 total_ms (wall time from the previous frame's end to this one's), features,
-//                 planes, state (the frame's EstimatorFrame, in order)
+//   stats.csv     per frame (FeatureFrame): t, load_ms (FrameDecoding), frontend_ms (the wall
+//                 time since the previous frame, without decoding and estimator work),
+//                 optimization_ms, features, planes, state (the frame's EstimatorFrame, in
+//                 order), total_ms (their sum: the frame's cost)
 //   summary.json  frames, poses, completeness (RunEnd), the estimator's summary (initialization,
 //                 time offset, resets, last status), the map's (MapSummary: size, batch
 //                 refinement), timing medians
@@ -37,7 +37,7 @@ class RunStatisticsModule : public Module {
   /// Per-frame wall times: the whole pipeline since the previous frame, the part spent decoding
   /// the frame's image files, and the part the estimator spent.
   struct FrameRow {
-    double t = 0, total_ms = 0, load_ms = 0, estimator_ms = 0;
+    double t = 0, wall_ms = 0, load_ms = 0, estimator_ms = 0;
   };
   void onFrame(double t);
   void write(double wall_s) const;
