@@ -167,9 +167,16 @@ PlaneDiscovery::CheckResult PlaneDiscovery::check(const FeatureFrame& j, const F
   }
   if (!enough_parallax()) return result;  // the gyroscope's error was the parallax
   std::vector<size_t> still;              // static, not yet on a plane
-  for (size_t i = 0; i < pairs.size(); ++i)
-    (epipolarDistance(pairs[i], *t) < epipolar_limit ? still.push_back(i)
-                                                     : result.moving.push_back(ids[i]));
+  std::vector<double> still_distances;    // their epipolar distances
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    const double distance = epipolarDistance(pairs[i], *t);
+    if (distance < epipolar_limit) {
+      still.push_back(i);
+      still_distances.push_back(distance);
+    } else {
+      result.moving.push_back(ids[i]);
+    }
+  }
   if (2 * still.size() <= pairs.size()) return result;  // no consensus: nothing judged
   // Points in front: the inverse depths ρ = mᵀx, from (y × t) ρ = −(y × x), mostly positive.
   std::vector<double> inverse_depths;
@@ -182,11 +189,11 @@ PlaneDiscovery::CheckResult PlaneDiscovery::check(const FeatureFrame& j, const F
   result.judged = true;
 
   double plane_limit = options_.plane_px / options_.focal_px;
-  if (options_.plane_sigmas > 0) {
-    std::vector<double> distances;
-    for (size_t i : still) distances.push_back(epipolarDistance(pairs[i], *t));
-    plane_limit = std::min(plane_limit, options_.plane_sigmas * median(distances) / 0.6745);
-  }
+  // σ of a zero-mean normal from its median absolute deviation: median / Φ⁻¹(3/4).
+  constexpr double kMedianAbsoluteDeviationPerSigma = 0.6745;
+  if (options_.plane_sigmas > 0)
+    plane_limit = std::min(plane_limit, options_.plane_sigmas * median(still_distances) /
+                                            kMedianAbsoluteDeviationPerSigma);
   const auto members = [&](const Eigen::Vector3d& m) {
     std::vector<size_t> in;
     for (size_t i : still)
