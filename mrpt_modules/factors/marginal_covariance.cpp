@@ -42,28 +42,33 @@ std::optional<Eigen::MatrixXd> marginalCovariance(ceres::Problem& problem,
   ceres::CRSMatrix crs;
   if (!problem.Evaluate(evaluate, nullptr, nullptr, nullptr, &crs)) return std::nullopt;
   // H = JᵀJ, row by row (a row has ~15 non-zeros: far cheaper than a sparse product). The kept
-  // columns' block S is dense; the scalar blocks' couplings (H_ek) and their own block (H_ee,
-  // diagonal for inverse depths) stay sparse: a dense H would be (kept + ~10³ depths)².
+  // columns' block S is dense and summed on its upper triangle only; the scalar blocks' couplings
+  // (H_ek) and their own block (H_ee, diagonal for inverse depths) stay sparse: a dense H would be
+  // (kept + ~10³ depths)². Each entry sums its rows' products in row order, as a dense H would.
   const int eliminated = crs.num_cols - dense_size;
   Eigen::MatrixXd S = Eigen::MatrixXd::Zero(dense_size, dense_size);
-  std::vector<Eigen::Triplet<double>> ek, ee;  // in row order: the sums' order of a dense H
-  const auto add = [&](int row, int col, double h) {
-    if (row < dense_size && col < dense_size)
-      S(row, col) += h;
-    else if (row >= dense_size && col >= dense_size)
-      ee.emplace_back(row - dense_size, col - dense_size, h);
-    else if (row >= dense_size)
-      ek.emplace_back(row - dense_size, col, h);  // its transpose is not needed
-  };
-  for (int row = 0; row < crs.num_rows; ++row)
-    for (int a = crs.rows[row]; a < crs.rows[row + 1]; ++a) {
-      add(crs.cols[a], crs.cols[a], crs.values[a] * crs.values[a]);
-      for (int b = a + 1; b < crs.rows[row + 1]; ++b) {
-        const double h = crs.values[a] * crs.values[b];
-        add(crs.cols[a], crs.cols[b], h);
-        add(crs.cols[b], crs.cols[a], h);
+  std::vector<Eigen::Triplet<double>> ek, ee;
+  std::vector<int> kept_entries, scalar_entries;  // one row's entries, by column group
+  for (int row = 0; row < crs.num_rows; ++row) {
+    kept_entries.clear();
+    scalar_entries.clear();
+    for (int a = crs.rows[row]; a < crs.rows[row + 1]; ++a)
+      (crs.cols[a] < dense_size ? kept_entries : scalar_entries).push_back(a);
+    for (size_t i = 0; i < kept_entries.size(); ++i)
+      for (size_t j = i; j < kept_entries.size(); ++j) {
+        const int a = kept_entries[i], b = kept_entries[j];
+        const auto [lo, hi] = std::minmax(crs.cols[a], crs.cols[b]);
+        S(lo, hi) += crs.values[a] * crs.values[b];
       }
+    for (const int e : scalar_entries) {
+      const int scalar = crs.cols[e] - dense_size;
+      for (const int f : scalar_entries)
+        ee.emplace_back(scalar, crs.cols[f] - dense_size, crs.values[e] * crs.values[f]);
+      for (const int k : kept_entries)  // its transpose is not needed
+        ek.emplace_back(scalar, crs.cols[k], crs.values[e] * crs.values[k]);
     }
+  }
+  S.triangularView<Eigen::StrictlyLower>() = S.transpose();
 
   // Schur complement of the scalar blocks, sparse (a depth touches a few poses):
   // S = H_kk − H_ke H_ee⁻¹ H_ek.
