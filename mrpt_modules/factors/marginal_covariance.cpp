@@ -12,6 +12,7 @@ namespace rpvio {
 
 namespace {
 constexpr double kFree = 1e-12;  // information added to every direction, relative to its block's
+constexpr size_t kDenseRowEntries = 48;  // a factor row: ≤ 4 poses and planes (~30 entries)
 }  // namespace
 
 std::optional<Eigen::MatrixXd> marginalCovariance(ceres::Problem& problem,
@@ -44,22 +45,27 @@ std::optional<Eigen::MatrixXd> marginalCovariance(ceres::Problem& problem,
   // H = JᵀJ, row by row (a row has ~15 non-zeros: far cheaper than a sparse product). The kept
   // columns' block S is dense and summed on its upper triangle only; the scalar blocks' couplings
   // (H_ek) and their own block (H_ee, diagonal for inverse depths) stay sparse: a dense H would be
-  // (kept + ~10³ depths)². Each entry sums its rows' products in row order, as a dense H would.
+  // (kept + ~10³ depths)². Rows dense over the kept columns (the marginalization prior's: most of
+  // the work, entry by entry) are summed as one product DᵀD instead.
   const int eliminated = crs.num_cols - dense_size;
   Eigen::MatrixXd S = Eigen::MatrixXd::Zero(dense_size, dense_size);
   std::vector<Eigen::Triplet<double>> ek, ee;
   std::vector<int> kept_entries, scalar_entries;  // one row's entries, by column group
+  std::vector<int> dense_rows;
   for (int row = 0; row < crs.num_rows; ++row) {
     kept_entries.clear();
     scalar_entries.clear();
     for (int a = crs.rows[row]; a < crs.rows[row + 1]; ++a)
       (crs.cols[a] < dense_size ? kept_entries : scalar_entries).push_back(a);
-    for (size_t i = 0; i < kept_entries.size(); ++i)
-      for (size_t j = i; j < kept_entries.size(); ++j) {
-        const int a = kept_entries[i], b = kept_entries[j];
-        const auto [lo, hi] = std::minmax(crs.cols[a], crs.cols[b]);
-        S(lo, hi) += crs.values[a] * crs.values[b];
-      }
+    if (kept_entries.size() > kDenseRowEntries)
+      dense_rows.push_back(row);
+    else
+      for (size_t i = 0; i < kept_entries.size(); ++i)
+        for (size_t j = i; j < kept_entries.size(); ++j) {
+          const int a = kept_entries[i], b = kept_entries[j];
+          const auto [lo, hi] = std::minmax(crs.cols[a], crs.cols[b]);
+          S(lo, hi) += crs.values[a] * crs.values[b];
+        }
     for (const int e : scalar_entries) {
       const int scalar = crs.cols[e] - dense_size;
       for (const int f : scalar_entries)
@@ -68,6 +74,14 @@ std::optional<Eigen::MatrixXd> marginalCovariance(ceres::Problem& problem,
         ek.emplace_back(scalar, crs.cols[k], crs.values[e] * crs.values[k]);
     }
   }
+  Eigen::MatrixXd D_transposed =
+      Eigen::MatrixXd::Zero(dense_size, static_cast<Eigen::Index>(dense_rows.size()));
+  for (size_t i = 0; i < dense_rows.size(); ++i)
+    for (int a = crs.rows[dense_rows[i]]; a < crs.rows[dense_rows[i] + 1]; ++a)
+      if (crs.cols[a] < dense_size)
+        D_transposed(crs.cols[a], static_cast<Eigen::Index>(i)) = crs.values[a];
+  if (!dense_rows.empty())  // Eigen's product blocking divides by the inner size
+    S.selfadjointView<Eigen::Upper>().rankUpdate(D_transposed);
   S.triangularView<Eigen::StrictlyLower>() = S.transpose();
 
   // Schur complement of the scalar blocks, sparse (a depth touches a few poses):
