@@ -117,19 +117,36 @@ std::shared_ptr<const MarginalizationPrior> Marginalizer::marginalize(
 
   Eigen::MatrixXd H = Eigen::MatrixXd::Zero(n, n);
   Eigen::VectorXd g = Eigen::VectorXd::Zero(n);
+  // Each factor: its Jacobian over its moving blocks' tangent spaces side by side (constant
+  // blocks get none), robustified, then JᵀJ and Jᵀr scattered into H and g block by block.
+  std::vector<RowMajorMatrix> block_jacobians;  // ambient, as the cost function writes them
+  std::vector<double*> J_ptrs;
+  std::vector<int> column_of;  // a block's first column in J, -1 when constant
   for (const Factor* f : used) {
     const int rows = f->cost->num_residuals();
     const auto& sizes = f->cost->parameter_block_sizes();
+    column_of.assign(sizes.size(), -1);
+    int cols = 0;
+    J_ptrs.assign(sizes.size(), nullptr);
+    if (block_jacobians.size() < sizes.size()) block_jacobians.resize(sizes.size());
+    for (size_t k = 0; k < sizes.size(); ++k) {
+      if (constant_.count(f->blocks[k])) continue;
+      column_of[k] = cols;
+      cols += tangentSize(sizes[k]);
+      block_jacobians[k].resize(rows, sizes[k]);
+      J_ptrs[k] = block_jacobians[k].data();
+    }
     Eigen::VectorXd r(rows);
-    std::vector<RowMajorMatrix> J_ambient;
-    std::vector<double*> J_ptrs;
-    for (int s : sizes) J_ambient.emplace_back(rows, s);
-    for (auto& J : J_ambient) J_ptrs.push_back(J.data());
+    Eigen::MatrixXd J(rows, cols);
     if (!f->cost->Evaluate(f->blocks.data(), r.data(), J_ptrs.data())) continue;
-    std::vector<Eigen::MatrixXd> J(sizes.size());
-    for (size_t k = 0; k < sizes.size(); ++k)
-      J[k] = isPose(sizes[k]) ? Eigen::MatrixXd(J_ambient[k] * posePlusJacobian(f->blocks[k]))
-                              : Eigen::MatrixXd(J_ambient[k]);
+    for (size_t k = 0; k < sizes.size(); ++k) {
+      if (column_of[k] < 0) continue;
+      if (isPose(sizes[k]))
+        J.middleCols(column_of[k], kPoseLocalSize) =
+            block_jacobians[k] * posePlusJacobian(f->blocks[k]);
+      else
+        J.middleCols(column_of[k], sizes[k]) = block_jacobians[k];
+    }
     if (f->loss) {
       // Ceres' robust corrector (Triggs et al.): the loss folded into residual and Jacobian.
       const double sq = r.squaredNorm();
@@ -142,16 +159,22 @@ std::shared_ptr<const MarginalizationPrior> Marginalizer::marginalize(
         residual_scaling = sqrt_rho1 / (1 - alpha);
         alpha_sq = alpha / sq;
       }
-      for (auto& Jk : J) Jk = sqrt_rho1 * (Jk - alpha_sq * r * (r.transpose() * Jk));
+      J = sqrt_rho1 * (J - alpha_sq * r * (r.transpose() * J));
       r *= residual_scaling;
     }
+    Eigen::MatrixXd JtJ(cols, cols);
+    JtJ.setZero();
+    JtJ.selfadjointView<Eigen::Lower>().rankUpdate(J.transpose());
+    JtJ.triangularView<Eigen::StrictlyUpper>() = JtJ.transpose();
+    const Eigen::VectorXd Jtr = J.transpose() * r;
     for (size_t a = 0; a < sizes.size(); ++a) {
-      if (constant_.count(f->blocks[a])) continue;
-      const int oa = offset[f->blocks[a]];
-      g.segment(oa, J[a].cols()) += J[a].transpose() * r;
+      if (column_of[a] < 0) continue;
+      const int oa = offset[f->blocks[a]], na = tangentSize(sizes[a]);
+      g.segment(oa, na) += Jtr.segment(column_of[a], na);
       for (size_t b = 0; b < sizes.size(); ++b)
-        if (!constant_.count(f->blocks[b]))
-          H.block(oa, offset[f->blocks[b]], J[a].cols(), J[b].cols()) += J[a].transpose() * J[b];
+        if (column_of[b] >= 0)
+          H.block(oa, offset[f->blocks[b]], na, tangentSize(sizes[b])) +=
+              JtJ.block(column_of[a], column_of[b], na, tangentSize(sizes[b]));
     }
   }
 
