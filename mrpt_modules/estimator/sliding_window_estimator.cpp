@@ -140,15 +140,14 @@ void SlidingWindowEstimator::optimize(WindowSolve solve) {
   for (size_t k = 0; k < first_free; ++k)
     for (double* block : {window_[k]->pose, window_[k]->speed_bias})
       if (problem.HasParameterBlock(block)) problem.SetParameterBlockConstant(block);
-  // Gauge: the window cannot observe its yaw and position, so the oldest frame keeps them (its
-  // whole pose before a prior exists). Left free, each solve moved the window along them by what
-  // the prior's linearization lends them (degrees of yaw within a second on the simulator).
-  if (!motion_only) {
-    if (prior_)
-      problem.SetManifold(window_.front()->pose, &solve_problem.gauge_manifold);
-    else
-      problem.SetParameterBlockConstant(window_.front()->pose);
-  }
+  // Gauge: the window cannot observe its yaw and position, so the oldest frame keeps them. Left
+  // free, each solve moved the window along them by what the prior's linearization lends them
+  // (degrees of yaw within a second on the simulator). Its tilt stays free, with or without a
+  // prior: the IMU factors observe it. Held until the first marginalization, it kept the
+  // initializer's gravity, which the accelerometer bias tilts (0.36 deg on seed-1 C1, the
+  // horizontal bias over g); freed all at once there, the window turned by 0.1-0.2 deg and its
+  // newest frame jumped 1-2 cm (7 cm on hard MP).
+  if (!motion_only) problem.SetManifold(window_.front()->pose, &solve_problem.gauge_manifold);
 
   ceres::Solver::Options solver;
   solver.trust_region_strategy_type = ceres::DOGLEG;
@@ -393,6 +392,11 @@ void SlidingWindowEstimator::startWindow(const InitializedWindow& init) {
   planes_.choose(features_);
   features_.triangulate(cameraLookup(), options_.min_triangulation_angle_deg * M_PI / 180,
                         kMinDepth, kMaxDepth);
+  // The planes the window already triangulates, as after every later frame: the first solve with
+  // their homography factors, not the second (a discovered floor entering at the second moved the
+  // scale by 0.24% at once, seed-1 C6).
+  planes_.initialize(features_, cameraLookup(), camera(window_.back()->id).translation(),
+                     map_.planesMap());
   optimize(WindowSolve::kWindow);
   rejectDepthOutliers();
 }
