@@ -14,8 +14,8 @@
 #include "common/input_error.h"
 #include "mrpt_modules/frontend/homography_ransac.h"
 #include "mrpt_modules/frontend/local_image_motion.h"
+#include "mrpt_modules/frontend/motion_prediction.h"
 #include "mrpt_modules/frontend/point_undistortion.h"
-#include "mrpt_modules/frontend/rotation_prediction.h"
 #include "mrpt_modules/frontend/warped_template_alignment.h"
 #include "rawlog_io/uniform_plane_region.h"
 
@@ -79,9 +79,29 @@ std::vector<std::string> FeatureTracker::takeWarnings() {
   return out;
 }
 
+std::vector<cv::Point2f> FeatureTracker::predictPixels(const std::vector<cv::Point2f>& pixels,
+                                                       const Eigen::Matrix3d& R_cur_prev,
+                                                       double dt) const {
+  std::vector<cv::Point2f> normalized;
+  for (const Track& tr : tracks_) normalized.push_back(tr.normalized);
+  std::vector<Eigen::Matrix3d> motion(tracks_.size(), R_cur_prev);
+  // A velocity older than three of its intervals (frames dropped) predicts nothing.
+  const double ratio = last_dt_ > 0 ? dt / last_dt_ : 0;
+  if (options_.predict_plane_motion && last_rotation_ && ratio > 0 && ratio <= 3) {
+    std::map<int, Eigen::Matrix3d> predicted;
+    for (const auto& [plane, H_last] : plane_motions_)
+      predicted[plane] = predictPlaneHomography(H_last, *last_rotation_, R_cur_prev, ratio);
+    for (size_t i = 0; i < tracks_.size(); ++i)
+      if (const auto it = predicted.find(tracks_[i].plane_id); it != predicted.end())
+        motion[i] = it->second;
+  }
+  return predictUnderHomographies(pixels, normalized, motion, camera_);
+}
+
 std::vector<FeatureTracker::Track> FeatureTracker::propagate(const Pyramid& pyramid,
                                                              const cv::Mat& mask,
-                                                             const Eigen::Matrix3d* R_cur_prev) {
+                                                             const Eigen::Matrix3d* R_cur_prev,
+                                                             double dt) {
   std::vector<Track> kept;
   if (tracks_.empty() || previous_pyramid_.empty()) return kept;
   if (previous_pyramid_[0].size() != pyramid[0].size()) {
@@ -96,11 +116,7 @@ std::vector<FeatureTracker::Track> FeatureTracker::propagate(const Pyramid& pyra
   // No error output: OpenCV then skips a pass over every window that computes it (4.7% of the
   // tracker's instructions; the tracks are the same).
   const bool predict = options_.predict_rotation && R_cur_prev;
-  if (predict) {
-    std::vector<cv::Point2f> normalized;
-    for (const Track& tr : tracks_) normalized.push_back(tr.normalized);
-    to = predictUnderRotation(from, normalized, *R_cur_prev, camera_);
-  }
+  if (predict) to = predictPixels(from, *R_cur_prev, dt);
   cv::calcOpticalFlowPyrLK(previous_pyramid_, pyramid, from, to, status, cv::noArray(), window,
                            options_.klt_levels, stop, predict ? cv::OPTFLOW_USE_INITIAL_FLOW : 0,
                            options_.klt_min_eigenvalue);
@@ -172,7 +188,7 @@ void FeatureTracker::refineAgainstAnchors(std::vector<Track>& tracks,
   tracks.swap(out);
 }
 
-FeatureTracker::PlaneHomographies FeatureTracker::rejectOutliers(std::vector<Track>& tracks) const {
+FeatureTracker::PlaneMotions FeatureTracker::rejectOutliers(std::vector<Track>& tracks) const {
   // Group by plane (one group without masks), test each group against its own model.
   std::map<int, std::vector<size_t>> groups;
   for (size_t i = 0; i < tracks.size(); ++i)
@@ -180,7 +196,7 @@ FeatureTracker::PlaneHomographies FeatureTracker::rejectOutliers(std::vector<Tra
   std::unordered_map<int, cv::Point2f> previous_normalized;
   for (const Track& p : tracks_) previous_normalized[p.id] = p.normalized;
   std::vector<bool> keep(tracks.size(), true);
-  PlaneHomographies homographies;
+  PlaneMotions motions;
   RansacOptions ransac;
   ransac.threshold_px = options_.ransac_threshold_px;
   ransac.virtual_focal = options_.virtual_focal;
@@ -193,21 +209,28 @@ FeatureTracker::PlaneHomographies FeatureTracker::rejectOutliers(std::vector<Tra
     const std::vector<bool> inliers = options_.use_masks ? homographyInliers(from, to, ransac)
                                                          : fundamentalInliers(from, to, ransac);
     std::vector<cv::Point2f> inlier_from, inlier_to;
+    PointList normalized_from, normalized_to;
     for (size_t k = 0; k < indices.size(); ++k) {
       keep[indices[k]] = inliers[k];
       if (!inliers[k]) continue;
       inlier_from.push_back(tracks[indices[k]].from);
       inlier_to.push_back(tracks[indices[k]].pixel);
+      normalized_from.emplace_back(from[k].x, from[k].y);
+      normalized_to.emplace_back(to[k].x, to[k].y);
     }
-    // The plane's image motion in pixels warps the birth patches of its tracks.
     if (!options_.use_masks) continue;
-    if (const auto motion = planeImageMotion(inlier_from, inlier_to)) homographies[plane] = *motion;
+    // The plane's image motion in pixels warps the birth patches of its tracks; undistorted, it
+    // predicts the next frame's (predict_plane_motion).
+    if (const auto motion = planeImageMotion(inlier_from, inlier_to)) motions.pixels[plane] = *motion;
+    if (options_.predict_plane_motion && normalized_from.size() >= kMinHomographyFeatures)
+      if (const auto H = fitHomography(normalized_from, normalized_to))
+        motions.normalized[plane] = *H;
   }
   std::vector<Track> out;
   for (size_t i = 0; i < tracks.size(); ++i)
     if (keep[i]) out.push_back(tracks[i]);
   tracks.swap(out);
-  return homographies;
+  return motions;
 }
 
 void FeatureTracker::computeUniformRegions(const cv::Mat& mask) {
@@ -327,6 +350,8 @@ FeatureFrame FeatureTracker::track(double t, const cv::Mat& raw_image, const cv:
     tracks_.clear();
     previous_.clear();
     previous_pyramid_.clear();
+    plane_motions_.clear();
+    last_rotation_.reset();
     return FeatureFrame{t, {}};
   }
   if (options_.clahe) {
@@ -339,11 +364,17 @@ FeatureFrame FeatureTracker::track(double t, const cv::Mat& raw_image, const cv:
   computeUniformRegions(mask);
   cv::buildOpticalFlowPyramid(image, pyramid_, cv::Size(options_.klt_window, options_.klt_window),
                               options_.klt_levels, true);
-  std::vector<Track> kept = propagate(pyramid_, mask, R_cur_prev);
+  std::vector<Track> kept = propagate(pyramid_, mask, R_cur_prev, dt);
   undistort(kept);
-  const PlaneHomographies homographies = rejectOutliers(kept);
+  PlaneMotions motions = rejectOutliers(kept);
+  plane_motions_ = std::move(motions.normalized);
+  if (R_cur_prev)
+    last_rotation_ = *R_cur_prev;
+  else
+    last_rotation_.reset();
+  last_dt_ = dt;
   if (options_.anchor_refinement) {
-    refineAgainstAnchors(kept, homographies, image);
+    refineAgainstAnchors(kept, motions.pixels, image);
     undistort(kept);
   }
   const std::map<int, DensePlane> dense =

@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <map>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,11 @@ struct TrackerOptions {
   // (rotation_prediction.h; FeatureTrackerModule integrates the IMU's gyroscope between the
   // images), instead of at its previous pixel.
   bool predict_rotation = true;
+  // With predict_rotation and masks: a plane's tracks start where its homography at constant
+  // velocity moves them (its last interval's homography, turned by the gyroscope's rotations;
+  // motion_prediction.h), so fast translation over a near plane (a car's road) needs no deep
+  // pyramid either. Planes with fewer than 8 inliers in the last interval: the rotation alone.
+  bool predict_plane_motion = true;
   double max_forward_backward_px = 0.5;  // px
   // A plane absent from the whole mask (a segmentation network missed it) keeps its tracks for
   // this many frames, on their own forward-backward, anchor and per-plane RANSAC checks; 0: they
@@ -86,6 +92,7 @@ struct TrackerOptions {
     RPVIO_OPTION(v, klt_window);
     RPVIO_OPTION(v, klt_levels);
     RPVIO_OPTION(v, predict_rotation);
+    RPVIO_OPTION(v, predict_plane_motion);
     RPVIO_OPTION(v, max_forward_backward_px);
     RPVIO_OPTION(v, missed_plane_frames);
     RPVIO_OPTION(v, klt_min_eigenvalue);
@@ -133,14 +140,22 @@ class FeatureTracker {
     int frames_plane_missed = 0;            // consecutive frames its plane was absent from the mask
   };
   using PlaneHomographies = std::map<int, cv::Matx33d>;  // plane → previous-to-current (pixels)
+  struct PlaneMotions {
+    PlaneHomographies pixels;
+    std::map<int, Eigen::Matrix3d> normalized;  // the same, undistorted (8 inliers or more)
+  };
   void warnOnce(const std::string& message);
   void undistort(std::vector<Track>& tracks) const;
   using Pyramid = std::vector<cv::Mat>;  // cv::buildOpticalFlowPyramid's, with derivatives
   std::vector<Track> propagate(const Pyramid& pyramid, const cv::Mat& mask,
-                               const Eigen::Matrix3d* R_cur_prev);
+                               const Eigen::Matrix3d* R_cur_prev, double dt);
+  /// Where KLT starts each track: its pixel moved by the rotation `R_cur_prev`, or by its plane's
+  /// homography at constant velocity (predict_plane_motion).
+  std::vector<cv::Point2f> predictPixels(const std::vector<cv::Point2f>& pixels,
+                                         const Eigen::Matrix3d& R_cur_prev, double dt) const;
   void refineAgainstAnchors(std::vector<Track>& tracks, const PlaneHomographies& homographies,
                             const cv::Mat& image) const;
-  PlaneHomographies rejectOutliers(std::vector<Track>& tracks) const;
+  PlaneMotions rejectOutliers(std::vector<Track>& tracks) const;
   /// Where new corners may go: detectable, not `taken` by a kept track, away from the border.
   cv::Mat& detectionMask(const cv::Mat& taken);
   /// The pyramid level corners are detected on in images `width` px wide (detection_level).
@@ -164,6 +179,11 @@ class FeatureTracker {
   std::vector<Track> tracks_;      // current frame
   std::vector<Track> previous_;    // previous frame (same ids where tracked)
   double previous_t_ = 0;
+  // The last interval's motion, for predict_plane_motion: each plane's homography (normalized
+  // coordinates), the gyroscope's rotation and the interval's length.
+  std::map<int, Eigen::Matrix3d> plane_motions_;
+  std::optional<Eigen::Matrix3d> last_rotation_;
+  double last_dt_ = 0;
   cv::Mat detectable_;  // plane pixels after the per-plane erosion
   cv::Mat trackable_;   // plane pixels with no other label within window_margin
   // Image-sized buffers kept between frames (no per-frame allocation): the neighbourhoods'

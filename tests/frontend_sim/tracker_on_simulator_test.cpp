@@ -105,24 +105,21 @@ struct FastTurnTracking {
   double median_px, p95_px;    // tracked pixel against the analytic projection
   double largest_turn_px = 0;  // largest image motion of a frame's centre by the turn alone
   double even_births = 0;      // share of the new features born on even pixel coordinates
+  double tracked_per_frame = 0;  // features continued from the previous frame, per frame
 };
 
-/// The first `duration` s of the handheld profile (head turns peaking at 3 rad/s from the start),
-/// at `size` (640x360 unless given): tracks from frame to frame, with the gyroscope's rotation
-/// prediction or without, corners on `detection_level`.
-FastTurnTracking handheldTracking(bool predict_rotation, const char* profile = "handheld",
-                                  cv::Size size = {640, 360},
-                                  int detection_level = TrackerOptions{}.detection_level,
-                                  double duration = 3) {
+/// `duration` s of a simulator profile from `start` s, at `size` (the profile's when empty):
+/// tracks from frame to frame with `options`.
+FastTurnTracking platformTracking(const TrackerOptions& options, const char* profile,
+                                  cv::Size size, double duration, double start = 0) {
   sim::SimConfig c = sim::SimConfig::profile(profile);
-  c.camera.width = size.width;
-  c.camera.height = size.height;
-  c.duration = duration;
+  if (!size.empty()) {
+    c.camera.width = size.width;
+    c.camera.height = size.height;
+  }
+  c.duration = start + duration;
   sim::Simulator sim(c);
   const std::vector<ImuSample> imu = sim.imuStream();
-  TrackerOptions options;
-  options.predict_rotation = predict_rotation;
-  options.detection_level = detection_level;
   const CameraIntrinsics camera = sim.calibration().camera;
   FeatureTracker tracker(camera, options);
   const Eigen::Matrix3d R_BC = sim.calibration().T_BC.linear();
@@ -131,7 +128,9 @@ FastTurnTracking handheldTracking(bool predict_rotation, const char* profile = "
   std::vector<int> previous;  // the previous frame's feature ids
   size_t continued = 0, offered = 0, births = 0, even = 0;
   FastTurnTracking out;
-  const auto times = sim.frameTimes();
+  std::vector<double> times;
+  for (const double t : sim.frameTimes())
+    if (t >= start) times.push_back(t);
   for (size_t k = 0; k < times.size(); ++k) {
     const double t = times[k];
     // What FeatureTrackerModule hands the tracker: the gyroscope (noise and bias as simulated)
@@ -177,12 +176,26 @@ FastTurnTracking handheldTracking(bool predict_rotation, const char* profile = "
     for (const auto& f : features.features) previous.push_back(f.id);
   }
   out.kept = offered ? static_cast<double>(continued) / offered : 0;
+  out.tracked_per_frame = static_cast<double>(continued) / std::max<size_t>(1, times.size() - 1);
   out.even_births = births ? static_cast<double>(even) / births : 0;
   if (!errors.empty()) {
     out.median_px = percentile(errors, 0.5);
     out.p95_px = percentile(errors, 0.95);
   }
   return out;
+}
+
+/// The first `duration` s of the handheld profile (head turns peaking at 3 rad/s from the start),
+/// at `size` (640x360 unless given), with the gyroscope's rotation prediction or without, corners
+/// on `detection_level`.
+FastTurnTracking handheldTracking(bool predict_rotation, const char* profile = "handheld",
+                                  cv::Size size = {640, 360},
+                                  int detection_level = TrackerOptions{}.detection_level,
+                                  double duration = 3) {
+  TrackerOptions options;
+  options.predict_rotation = predict_rotation;
+  options.detection_level = detection_level;
+  return platformTracking(options, profile, size, duration);
 }
 
 TEST(TrackerOnSimulator, TheGyroscopesPredictionFollowsFastTurns) {
@@ -219,6 +232,30 @@ TEST(TrackerOnSimulator, At1280PixelsWideCornersOnTheHalfResolutionImageTrackAsW
   EXPECT_GT(half.kept, full.kept - 0.02);
   EXPECT_LT(half.median_px, 0.15);  // the static sequence's bar
   EXPECT_LT(half.p95_px, 1.5 * full.p95_px);
+}
+
+TEST(TrackerOnSimulator, ThePlanesHomographyFollowsACarsRoadWithOnePyramidLevelLess) {
+  // The car profile at full speed (10 m/s, 10 Hz, the road 1.6 m below the camera: its nearest
+  // visible points move ~40 px per frame), 3 s after the 6 s ramp. With each plane's homography
+  // at constant velocity as the prediction, two pyramid levels keep the road's tracks as the
+  // default three do; with the rotation alone they lose some.
+  TrackerOptions options;
+  const FastTurnTracking three_levels = platformTracking(options, "car", {}, 3.0, 7.0);
+  options.klt_levels = 1;
+  const FastTurnTracking planes = platformTracking(options, "car", {}, 3.0, 7.0);
+  options.predict_plane_motion = false;
+  const FastTurnTracking rotation = platformTracking(options, "car", {}, 3.0, 7.0);
+  std::printf(
+      "car at 10 m/s, 3 s, two pyramid levels: plane prediction %.1f%% kept, error median %.3f "
+      "px, p95 %.3f px; rotation only %.1f%%, %.3f px, %.3f px; three levels %.1f%%\n",
+      100 * planes.kept, planes.median_px, planes.p95_px, 100 * rotation.kept,
+      rotation.median_px, rotation.p95_px, 100 * three_levels.kept);
+  // Measured: 47.4 % (0.069 / 0.550 px) against 41.3 % with the rotation alone; three levels
+  // 47.3 %. Most of the road's tracks that end are born on its far, aliased texture and fail
+  // the anchored correlation on their second frame, whatever the prediction.
+  EXPECT_GT(planes.kept, rotation.kept + 0.03);
+  EXPECT_GT(planes.kept, three_levels.kept - 0.01);
+  EXPECT_LT(planes.median_px, 0.15);  // the static sequence's bar
 }
 
 /// Fraction of (feature, frame) pairs whose tracked pixel lies on a character.
