@@ -221,7 +221,8 @@ FeatureTracker::PlaneMotions FeatureTracker::rejectOutliers(std::vector<Track>& 
     if (!options_.use_masks) continue;
     // The plane's image motion in pixels warps the birth patches of its tracks; undistorted, it
     // predicts the next frame's (predict_plane_motion).
-    if (const auto motion = planeImageMotion(inlier_from, inlier_to)) motions.pixels[plane] = *motion;
+    if (const auto motion = planeImageMotion(inlier_from, inlier_to))
+      motions.pixels[plane] = *motion;
     if (options_.predict_plane_motion && normalized_from.size() >= kMinHomographyFeatures)
       if (const auto H = fitHomography(normalized_from, normalized_to))
         motions.normalized[plane] = *H;

@@ -23,8 +23,8 @@ std::vector<cv::Point2f> predictUnderRotation(const std::vector<cv::Point2f>& pi
                                               const std::vector<cv::Point2f>& normalized,
                                               const Eigen::Matrix3d& R_cur_prev,
                                               const CameraIntrinsics& camera) {
-  return predictUnderHomographies(
-      pixels, normalized, std::vector<Eigen::Matrix3d>(pixels.size(), R_cur_prev), camera);
+  return predictUnderHomographies(pixels, normalized,
+                                  std::vector<Eigen::Matrix3d>(pixels.size(), R_cur_prev), camera);
 }
 
 Eigen::Matrix3d predictPlaneHomography(const Eigen::Matrix3d& H_last, const Eigen::Matrix3d& R_last,

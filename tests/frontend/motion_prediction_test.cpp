@@ -86,16 +86,18 @@ TEST(PlaneHomographyPrediction, ConstantVelocityAndAnyRotationsGiveTheExactNextH
     Eigen::Vector3d n;
     double d;
   };
-  for (const Case& plane : {Case{Eigen::Vector3d(0, 0, 1), 6.0}, Case{Eigen::Vector3d(0, -1, 0), 1.2}}) {
+  for (const Case& plane :
+       {Case{Eigen::Vector3d(0, 0, 1), 6.0}, Case{Eigen::Vector3d(0, -1, 0), 1.2}}) {
     const Pose a{turn(0.3, -0.2, 0.05), Eigen::Vector3d(0.2, 0.1, 0)};
     const Pose b{turn(0.15, 0.1, 0.0) * a.R, a.c + v * dt};
     const Pose c{turn(-0.2, 0.05, 0.1) * b.R, b.c + v * 1.5 * dt};
     const Eigen::Matrix3d H_ab = planeHomography(a, b, plane.n, plane.d);
     const Eigen::Matrix3d H_bc = planeHomography(b, c, plane.n, plane.d);
-    const Eigen::Matrix3d predicted = predictPlaneHomography(
-        -2.7 * H_ab, b.R * a.R.transpose(), c.R * b.R.transpose(), 1.5);
+    const Eigen::Matrix3d predicted =
+        predictPlaneHomography(-2.7 * H_ab, b.R * a.R.transpose(), c.R * b.R.transpose(), 1.5);
     // Up to scale: compare with both normalized to their (2, 2) entry.
-    EXPECT_LT((predicted / predicted(2, 2) - H_bc / H_bc(2, 2)).norm(), 1e-9) << plane.n.transpose();
+    EXPECT_LT((predicted / predicted(2, 2) - H_bc / H_bc(2, 2)).norm(), 1e-9)
+        << plane.n.transpose();
     // The translation matters: rotation alone is far from it.
     const Eigen::Matrix3d R_bc = c.R * b.R.transpose();
     EXPECT_GT((R_bc / R_bc(2, 2) - H_bc / H_bc(2, 2)).norm(), 0.01);
