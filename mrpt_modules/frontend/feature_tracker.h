@@ -45,7 +45,9 @@ struct TrackerOptions {
   // velocity moves them (its last interval's homography, turned by the gyroscope's rotations;
   // motion_prediction.h), so fast translation over a near plane (a car's road) needs no deep
   // pyramid either. Planes with fewer than 8 inliers in the last interval: the rotation alone.
-  bool predict_plane_motion = true;
+  // Off by default: rpvio-multi was worse with it on the paper suite
+  // (docs/notes/2026-11-29-plane-motion-prediction.md).
+  bool predict_plane_motion = false;
   double max_forward_backward_px = 0.5;  // px
   // A plane absent from the whole mask (a segmentation network missed it) keeps its tracks for
   // this many frames, on their own forward-backward, anchor and per-plane RANSAC checks; 0: they
