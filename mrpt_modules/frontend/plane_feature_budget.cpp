@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <vector>
 
 namespace rpvio {
 
@@ -18,15 +20,24 @@ std::map<int, DensePlane> densePlanes(const cv::Mat& mask, const cv::Mat& detect
   };
   std::array<Extent, 256> extent{};
   // Row by row, in runs of one label (detectable pixels only; 0 otherwise): one extent update per
-  // run, and a loop per pixel that only compares.
+  // run. The row's labels are gathered first (a loop that vectorizes), then runs are followed
+  // eight pixels at a time while a whole word repeats the run's label.
+  const int cols = mask.cols;
+  std::vector<uint8_t> labels(static_cast<size_t>(cols));
   for (int y = 0; y < mask.rows; ++y) {
-    const uint8_t* label = mask.ptr<uint8_t>(y);
-    const uint8_t* ok = detectable.ptr<uint8_t>(y);
-    const auto labelAt = [&](int x) { return ok[x] ? label[x] : uint8_t{0}; };
-    for (int x = 0; x < mask.cols;) {
-      const uint8_t l = labelAt(x);
+    const uint8_t* __restrict label = mask.ptr<uint8_t>(y);
+    const uint8_t* __restrict ok = detectable.ptr<uint8_t>(y);
+    uint8_t* __restrict row = labels.data();
+    for (int x = 0; x < cols; ++x) row[x] = label[x] & static_cast<uint8_t>(-(ok[x] != 0));
+    for (int x = 0; x < cols;) {
+      const uint8_t l = row[x];
+      const uint64_t repeated = 0x0101010101010101ull * l;
       int end = x + 1;
-      while (end < mask.cols && labelAt(end) == l) ++end;
+      for (uint64_t word; end + 8 <= cols; end += 8) {
+        std::memcpy(&word, row + end, sizeof word);
+        if (word != repeated) break;
+      }
+      while (end < cols && row[end] == l) ++end;
       if (l != 0) {
         Extent& e = extent[l];
         if (e.area == 0) {
