@@ -263,14 +263,19 @@ int FeatureTracker::detectionLevel(int width) const {
 
 std::vector<cv::Point2f> FeatureTracker::detectCorners(CornerDetector& detector,
                                                        const cv::Mat& image, const cv::Mat& allowed,
-                                                       int wanted, double spacing,
-                                                       int level) const {
+                                                       int wanted, double spacing, int level,
+                                                       const Pyramid* pyramid) const {
   // Shi–Tomasi corners on pyramid level `level`: a corner there is a textured neighbourhood of
   // 3·2^level px, which a KLT window of 21 px tracks as well as a full-resolution one, at a
-  // quarter of the cost per level.
+  // quarter of the cost per level. The KLT pyramid's levels are the same pyrDown images (same
+  // kernel and border) when it is the whole image's.
   cv::Mat level_image = image, level_allowed = allowed;
   for (int l = 0; l < level; ++l) {
-    cv::pyrDown(level_image, level_image);
+    const size_t in_pyramid = 2 * static_cast<size_t>(l + 1);  // images and derivatives interleave
+    if (pyramid && in_pyramid < pyramid->size())
+      level_image = (*pyramid)[in_pyramid];
+    else
+      cv::pyrDown(level_image, level_image);
     cv::resize(level_allowed, level_allowed, level_image.size(), 0, 0, cv::INTER_NEAREST);
   }
   const double scale = std::ldexp(1.0, level);
@@ -428,7 +433,8 @@ FeatureFrame FeatureTracker::track(double t, const cv::Mat& raw_image, const cv:
       allowed(box).setTo(0, on_plane_);
     }
     if (wanted > 0 && any_allowed) {
-      auto found = detectCorners(detector_, image, allowed, wanted, options_.min_distance, level);
+      auto found =
+          detectCorners(detector_, image, allowed, wanted, options_.min_distance, level, &pyramid_);
       corners.insert(corners.end(), found.begin(), found.end());
     }
     if (!any_allowed && spaced.empty())

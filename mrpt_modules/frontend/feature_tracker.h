@@ -162,10 +162,11 @@ class FeatureTracker {
   cv::Mat& detectionMask(const cv::Mat& taken);
   /// The pyramid level corners are detected on in images `width` px wide (detection_level).
   int detectionLevel(int width) const;
-  /// Up to `wanted` corners where `allowed`, `spacing` px apart, from `detector`, on `level`.
+  /// Up to `wanted` corners where `allowed`, `spacing` px apart, from `detector`, on `level`;
+  /// `pyramid`, when given, is `image`'s KLT pyramid (its levels are not computed again).
   std::vector<cv::Point2f> detectCorners(CornerDetector& detector, const cv::Mat& image,
                                          const cv::Mat& allowed, int wanted, double spacing,
-                                         int level) const;
+                                         int level, const Pyramid* pyramid = nullptr) const;
   void computeUniformRegions(const cv::Mat& mask);
   FeatureFrame publish(double t, double dt);
   Track newTrack(int label, cv::Point2f corner, cv::Point2f normalized, const cv::Mat& image);
