@@ -79,11 +79,13 @@ std::vector<std::string> FeatureTracker::takeWarnings() {
   return out;
 }
 
-std::vector<cv::Point2f> FeatureTracker::predictPixels(const std::vector<cv::Point2f>& pixels,
-                                                       const Eigen::Matrix3d& R_cur_prev,
+std::vector<cv::Point2f> FeatureTracker::predictPixels(const Eigen::Matrix3d& R_cur_prev,
                                                        double dt) const {
-  std::vector<cv::Point2f> normalized;
-  for (const Track& tr : tracks_) normalized.push_back(tr.normalized);
+  std::vector<cv::Point2f> pixels, normalized;
+  for (const Track& tr : tracks_) {
+    pixels.push_back(tr.pixel);
+    normalized.push_back(tr.normalized);
+  }
   std::vector<Eigen::Matrix3d> motion(tracks_.size(), R_cur_prev);
   // A velocity older than three of its intervals (frames dropped) predicts nothing.
   const double ratio = last_dt_ > 0 ? dt / last_dt_ : 0;
@@ -116,7 +118,7 @@ std::vector<FeatureTracker::Track> FeatureTracker::propagate(const Pyramid& pyra
   // No error output: OpenCV then skips a pass over every window that computes it (4.7% of the
   // tracker's instructions; the tracks are the same).
   const bool predict = options_.predict_rotation && R_cur_prev;
-  if (predict) to = predictPixels(from, *R_cur_prev, dt);
+  if (predict) to = predictPixels(*R_cur_prev, dt);
   cv::calcOpticalFlowPyrLK(previous_pyramid_, pyramid, from, to, status, cv::noArray(), window,
                            options_.klt_levels, stop, predict ? cv::OPTFLOW_USE_INITIAL_FLOW : 0,
                            options_.klt_min_eigenvalue);

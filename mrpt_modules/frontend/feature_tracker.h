@@ -153,8 +153,7 @@ class FeatureTracker {
                                const Eigen::Matrix3d* R_cur_prev, double dt);
   /// Where KLT starts each track: its pixel moved by the rotation `R_cur_prev`, or by its plane's
   /// homography at constant velocity (predict_plane_motion).
-  std::vector<cv::Point2f> predictPixels(const std::vector<cv::Point2f>& pixels,
-                                         const Eigen::Matrix3d& R_cur_prev, double dt) const;
+  std::vector<cv::Point2f> predictPixels(const Eigen::Matrix3d& R_cur_prev, double dt) const;
   void refineAgainstAnchors(std::vector<Track>& tracks, const PlaneHomographies& homographies,
                             const cv::Mat& image) const;
   PlaneMotions rejectOutliers(std::vector<Track>& tracks) const;

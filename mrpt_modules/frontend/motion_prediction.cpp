@@ -19,14 +19,6 @@ std::vector<cv::Point2f> predictUnderHomographies(const std::vector<cv::Point2f>
   return predicted;
 }
 
-std::vector<cv::Point2f> predictUnderRotation(const std::vector<cv::Point2f>& pixels,
-                                              const std::vector<cv::Point2f>& normalized,
-                                              const Eigen::Matrix3d& R_cur_prev,
-                                              const CameraIntrinsics& camera) {
-  return predictUnderHomographies(pixels, normalized,
-                                  std::vector<Eigen::Matrix3d>(pixels.size(), R_cur_prev), camera);
-}
-
 Eigen::Matrix3d predictPlaneHomography(const Eigen::Matrix3d& H_last, const Eigen::Matrix3d& R_last,
                                        const Eigen::Matrix3d& R_next, double interval_ratio) {
   const Eigen::Vector3d sigma = Eigen::JacobiSVD<Eigen::Matrix3d>(H_last).singularValues();

@@ -22,13 +22,6 @@ std::vector<cv::Point2f> predictUnderHomographies(const std::vector<cv::Point2f>
                                                   const std::vector<Eigen::Matrix3d>& H_cur_prev,
                                                   const CameraIntrinsics& camera);
 
-/// The same for every point turned by the camera's rotation `R_cur_prev` (previous-camera
-/// coordinates to current ones).
-std::vector<cv::Point2f> predictUnderRotation(const std::vector<cv::Point2f>& pixels,
-                                              const std::vector<cv::Point2f>& normalized,
-                                              const Eigen::Matrix3d& R_cur_prev,
-                                              const CameraIntrinsics& camera);
-
 /// A static plane's homography over the next interval (normalized coordinates), from the one it
 /// had over the last interval at constant velocity.
 /// - `H_last` (frames k−1 → k, any scale): R_last + t nₖ₋₁ᵀ/dₖ₋₁, with t the translation in

@@ -33,7 +33,8 @@ TEST(RotationPrediction, PureRotationLandsOnTheExactProjection) {
         pixels.push_back(project(c, points.back()));
         normalized.emplace_back(static_cast<float>(x / z), static_cast<float>(y / z));
       }
-  const auto predicted = predictUnderRotation(pixels, normalized, R, c);
+  const auto predicted = predictUnderHomographies(
+      pixels, normalized, std::vector<Eigen::Matrix3d>(pixels.size(), R), c);
   double largest_motion = 0;
   for (size_t i = 0; i < points.size(); ++i) {
     const cv::Point2f exact = project(c, R * points[i]);
@@ -48,7 +49,8 @@ TEST(RotationPrediction, ABearingTurnedBehindTheCameraKeepsItsPixel) {
   const Eigen::Matrix3d R =
       Eigen::AngleAxisd(M_PI / 2 + 0.2, Eigen::Vector3d::UnitY()).toRotationMatrix();
   const std::vector<cv::Point2f> pixels{{320, 240}}, normalized{{0, 0}};
-  const auto predicted = predictUnderRotation(pixels, normalized, R, c);
+  const auto predicted = predictUnderHomographies(
+      pixels, normalized, std::vector<Eigen::Matrix3d>(pixels.size(), R), c);
   EXPECT_EQ(predicted[0], pixels[0]);
 }
 
