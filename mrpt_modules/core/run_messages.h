@@ -22,6 +22,9 @@ struct FrameReport {
   size_t features = 0;    // features in use in the newest frame
   size_t planes = 0;      // planes with homography factors
   int ground_plane = -1;  // the plane camera-height factors held the cameras over (−1: none)
+  // The frame began with what the previous keyframe's long solve left: the planes' covariances
+  // and the oldest keyframe's marginalization (max_iterations_before_deferring).
+  bool finished_keyframe_work = false;
 };
 
 /// Published by the estimator for every frame it processed, in order (a frame waiting for its IMU

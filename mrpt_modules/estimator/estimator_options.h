@@ -42,6 +42,10 @@ struct EstimatorOptions {
   // on keyframes only.
   bool motion_only_between_keyframes = true;
   double max_solver_time_s = 0;  // 0: no time budget (a budget makes runs machine-dependent)
+  // A keyframe's whole-window solve that takes more iterations than this leaves the planes'
+  // covariances and the oldest keyframe's marginalization to the start of the next frame, so
+  // that no frame pays for a long solve and both. max_iterations or more: never.
+  int max_iterations_before_deferring = 2;
   double min_triangulation_angle_deg = 1.0;
   // Failure detection.
   double max_accel_bias = 2.5;  // m/s²
@@ -148,6 +152,7 @@ struct EstimatorOptions {
     RPVIO_OPTION(v, max_iterations);
     RPVIO_OPTION(v, motion_only_between_keyframes);
     RPVIO_OPTION(v, max_solver_time_s);
+    RPVIO_OPTION(v, max_iterations_before_deferring);
     RPVIO_OPTION(v, min_triangulation_angle_deg);
     RPVIO_OPTION(v, max_accel_bias);
     RPVIO_OPTION(v, max_gyro_bias);

@@ -149,6 +149,11 @@ void SlidingWindowEstimator::optimize(WindowSolve solve) {
   // newest frame jumped 1-2 cm (7 cm on hard MP).
   if (!motion_only) problem.SetManifold(window_.front()->pose, &solve_problem.gauge_manifold);
 
+  if (solve == WindowSolve::kPlaneCovariances) {
+    for (double* block : held_planes) problem.SetParameterBlockVariable(block);
+    planes_.updateCovariances(problem, planes_with_factors);
+    return;
+  }
   ceres::Solver::Options solver;
   solver.trust_region_strategy_type = ceres::DOGLEG;
   solver.linear_solver_type = ceres::DENSE_SCHUR;
@@ -159,6 +164,12 @@ void SlidingWindowEstimator::optimize(WindowSolve solve) {
   ceres::Solver::Summary summary;
   ceres::Solve(solver, &problem, &summary);
   if (solve != WindowSolve::kWindowAndPlaneCovariances) return;
+  // A long solve leaves the covariances and the marginalization that follow it to the next frame
+  // (summary.iterations counts the starting point too).
+  if (static_cast<int>(summary.iterations.size()) - 1 > options_.max_iterations_before_deferring) {
+    keyframe_work_deferred_ = true;
+    return;
+  }
   // The covariances count the held planes' uncertainty (what the prior knows of them): held, they
   // would be taken as exact and the others' sigmas shrink (a wall's offset 0.16 -> 0.05 m, for an
   // error of 0.17 m, EstimatorOnSimulator.PlaneMapCovariancesAreConsistent).
@@ -329,7 +340,16 @@ void SlidingWindowEstimator::archiveKeyframe(const Frame& frame, const Frame* ne
   map_.keyframeLeft(left);
 }
 
+bool SlidingWindowEstimator::finishKeyframeWork() {
+  if (!keyframe_work_deferred_) return false;
+  keyframe_work_deferred_ = false;
+  optimize(WindowSolve::kPlaneCovariances);
+  marginalizeOldest();
+  return true;
+}
+
 void SlidingWindowEstimator::finishMap() {
+  finishKeyframeWork();
   if (initialized_) {
     flushPlanes();
     for (size_t k = 0; k < window_.size(); ++k) {
@@ -424,7 +444,8 @@ void SlidingWindowEstimator::reset(const std::string& cause,
   status_detail_ = status_;
   report_.state = "reset";
   initialized_ = false;
-  map_.chainBroken();  // the window's frames, the link's other end, are dropped
+  keyframe_work_deferred_ = false;  // the window it was for is dropped
+  map_.chainBroken();               // the window's frames, the link's other end, are dropped
   window_.clear();
   features_.clear();
   prior_.reset();
@@ -479,7 +500,8 @@ FeatureFrame SlidingWindowEstimator::screenPlanes(const FeatureFrame& frame,
 
 std::optional<StateEstimate> SlidingWindowEstimator::addFrame(
     const FeatureFrame& camera_frame, const std::vector<ImuSample>& imu_since_previous) {
-  const auto start = std::chrono::steady_clock::now();  // the screening's time is counted too
+  const auto start = std::chrono::steady_clock::now();       // the screening's time is counted too
+  const bool finished_keyframe_work = finishKeyframeWork();  // on the window as it was left
   const FeatureFrame frame = screenPlanes(camera_frame, imu_since_previous);
   // While initializing, discovered labels reach back over the buffered frames (setFrameScreen).
   const FeatureFrame& to_bootstrapper = options_.discover_planes ? camera_frame : frame;
@@ -488,6 +510,7 @@ std::optional<StateEstimate> SlidingWindowEstimator::addFrame(
         .count();
   };
   report_ = FrameReport{};
+  report_.finished_keyframe_work = finished_keyframe_work;
   if (!initialized_) {
     report_.state = "initializing";
     const auto init = bootstrapper_.addFrame(to_bootstrapper, imu_since_previous);
@@ -549,7 +572,7 @@ std::optional<StateEstimate> SlidingWindowEstimator::addFrame(
   bootstrapper_.setGoodState(frame.t, window_.back()->pose, window_.back()->speed_bias);
   if (!keyframe)
     dropSecondNewest();
-  else if (window_.size() > options_.window_size + 1)
+  else if (window_.size() > options_.window_size + 1 && !keyframe_work_deferred_)
     marginalizeOldest();
   report_.state = "tracking";
   report_.optimization_ms = elapsed_ms();

@@ -14,8 +14,11 @@
 // and the marginalization prior. Each frame is optimized (Dogleg, DENSE_SCHUR); then the oldest
 // keyframe is marginalized when the second newest frame is a keyframe (parallax or few common
 // tracks), else the second newest is dropped (its IMU merged into the newest, its visual
-// measurements discarded). With motion_only_between_keyframes, a frame whose second newest is not
-// a keyframe solves only the two newest frames against the rest of the window held.
+// measurements discarded). A keyframe whose solve took more than max_iterations_before_deferring
+// iterations leaves its planes' covariances and the marginalization to the start of the next
+// frame, so that no frame pays for a long solve and both. With motion_only_between_keyframes, a
+// frame whose second newest is not a keyframe solves only the two newest frames against the rest
+// of the window held.
 //
 // Modes: every tracked feature (the front-end restricts them to the plane masks or not) has
 // reprojection factors; homography factors on no plane (vins-mono, mask-vins), the largest plane
@@ -121,6 +124,7 @@ class SlidingWindowEstimator {
     kWindowAndPlaneCovariances,  // then the covariance of every plane with factors (what the
                                  // planes map weighs a visit by)
     kNewestFrames,               // the two newest frames against the rest held (motion only)
+    kPlaneCovariances,           // no solve: the covariances only, at the window's state
   };
   /// One solve of the window.
   void optimize(WindowSolve solve);
@@ -131,6 +135,8 @@ class SlidingWindowEstimator {
   void rejectDepthOutliers();
   std::string failure(const double* predicted_pose) const;
   void marginalizeOldest();
+  /// The covariances and marginalization a long keyframe solve left, if any (then true).
+  bool finishKeyframeWork();
   /// A keyframe leaving the window to the map, with its IMU link to the next one.
   void archiveKeyframe(const Frame& frame, const Frame* next);
   void forgetUnseenPlanes();
@@ -154,6 +160,8 @@ class SlidingWindowEstimator {
   uint64_t next_frame_id_ = 0;
   FeatureManager features_;
   std::shared_ptr<const MarginalizationPrior> prior_;
+  bool keyframe_work_deferred_ = false;  // the planes' covariances and the oldest keyframe's
+                                         // marginalization, left to the next frame
   WindowPlanes planes_;
   std::optional<GroundInWindow> ground_;  // of the last solve, when camera-height factors held it
   PlaneVerifier plane_verifier_;

@@ -53,6 +53,7 @@ struct RunResult {
   std::string refinement_report;
   // Solves in which a window plane had fewer than kMinPlanePoints landmarks seen in the last 3.5 s
   // (longer than the window), so no homography factor, and how far its (n, d) moved in them.
+  size_t frames_finishing_keyframe_work = 0;  // FrameReport::finished_keyframe_work
   size_t solves_without_plane_factors = 0;
   double largest_move_without_factors = 0;  // normal change (rad) + offset change (m)
   // Each pose's tilt error (deg): the angle between the estimated and the true gravity direction
@@ -113,8 +114,10 @@ struct Revisit {
   double pixel_sigma;         // noise on every observation (px at the focal length 320)
 };
 
-RunResult run(HomographyPlanes homography, double duration, const Revisit* revisit = nullptr,
-              bool refine = false, size_t max_refined_keyframes = 2000) {
+RunResult run(
+    HomographyPlanes homography, double duration, const Revisit* revisit = nullptr,
+    bool refine = false, size_t max_refined_keyframes = 2000,
+    int max_iterations_before_deferring = EstimatorOptions{}.max_iterations_before_deferring) {
   sim::SimConfig config;
   config.duration = duration;
   sim::Simulator sim(config);
@@ -124,6 +127,7 @@ RunResult run(HomographyPlanes homography, double duration, const Revisit* revis
   EstimatorOptions options;
   options.pixel_sigma = 0.5;  // the features are exact: the default 1.5 px under-weights them
   options.homography_planes = homography;
+  options.max_iterations_before_deferring = max_iterations_before_deferring;
   MapBuilderOptions map_options;
   map_options.batch_refinement_max_keyframes = max_refined_keyframes;
   MapBuilder map(PlanesMapOptions{}, map_options);
@@ -174,6 +178,7 @@ RunResult run(HomographyPlanes homography, double duration, const Revisit* revis
     previous_imu = now;
     const PlaneEstimates planes_before = estimator.planes();
     const auto state = estimator.addFrame(frame, samples);
+    result.frames_finishing_keyframe_work += estimator.lastReport().finished_keyframe_work;
     if (!state) continue;
     std::map<int, size_t> recently_seen;
     for (const Landmark& l : landmarks) recently_seen[l.plane] += l.last_seen >= t - 3.5;
@@ -286,6 +291,24 @@ TEST(EstimatorExactFeatures, BatchRefinementTightensTrajectoryAndPlanes) {
   EXPECT_LT(r.refined_shape_rmse, 0.5 * r.shape_rmse);
   EXPECT_LT(r.map.worst_normal_deg, 0.25);
   EXPECT_LT(r.map.worst_offset_m, 0.025);
+}
+
+// A keyframe's covariances and marginalization done at the start of the next frame (every time,
+// max_iterations_before_deferring = 0) or right after its solve (never): the same odometry, batch
+// refinement and map, to the last bit.
+TEST(EstimatorExactFeatures, KeyframeWorkLeftToTheNextFrameGivesTheSameResults) {
+  const Revisit noisy{0, 0.0, 0.0, 0, 0.1};  // label 0: noise only
+  const RunResult always = run(HomographyPlanes::kAll, 10.0, &noisy, true, 2000, 0);
+  const RunResult never = run(HomographyPlanes::kAll, 10.0, &noisy, true, 2000, 1000);
+  std::printf("keyframe work deferred on %zu frames, never on the other run (%zu)\n",
+              always.frames_finishing_keyframe_work, never.frames_finishing_keyframe_work);
+  EXPECT_GT(always.frames_finishing_keyframe_work, 20u);
+  EXPECT_EQ(never.frames_finishing_keyframe_work, 0u);
+  EXPECT_EQ(always.poses, never.poses);
+  EXPECT_EQ(always.ate_rmse, never.ate_rmse);
+  EXPECT_EQ(always.refined_shape_rmse, never.refined_shape_rmse);
+  EXPECT_EQ(always.map.worst_normal_deg, never.map.worst_normal_deg);
+  EXPECT_EQ(always.map.worst_offset_m, never.map.worst_offset_m);
 }
 
 // More keyframes than batch_refinement_max_keyframes: no refinement, and the report says why.
