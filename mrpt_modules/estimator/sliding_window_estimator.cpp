@@ -149,26 +149,24 @@ void SlidingWindowEstimator::optimize(WindowSolve solve) {
   // newest frame jumped 1-2 cm (7 cm on hard MP).
   if (!motion_only) problem.SetManifold(window_.front()->pose, &solve_problem.gauge_manifold);
 
-  if (solve == WindowSolve::kPlaneCovariances) {
-    for (double* block : held_planes) problem.SetParameterBlockVariable(block);
-    planes_.updateCovariances(problem, planes_with_factors);
-    return;
-  }
-  ceres::Solver::Options solver;
-  solver.trust_region_strategy_type = ceres::DOGLEG;
-  solver.linear_solver_type = ceres::DENSE_SCHUR;
-  solver.max_num_iterations = options_.max_iterations;
-  if (options_.max_solver_time_s > 0)
-    solver.max_solver_time_in_seconds = options_.max_solver_time_s;
-  solver.num_threads = 1;
-  ceres::Solver::Summary summary;
-  ceres::Solve(solver, &problem, &summary);
-  if (solve != WindowSolve::kWindowAndPlaneCovariances) return;
-  // A long solve leaves the covariances and the marginalization that follow it to the next frame
-  // (summary.iterations counts the starting point too).
-  if (static_cast<int>(summary.iterations.size()) - 1 > options_.max_iterations_before_deferring) {
-    keyframe_work_deferred_ = true;
-    return;
+  if (solve != WindowSolve::kPlaneCovariances) {
+    ceres::Solver::Options solver;
+    solver.trust_region_strategy_type = ceres::DOGLEG;
+    solver.linear_solver_type = ceres::DENSE_SCHUR;
+    solver.max_num_iterations = options_.max_iterations;
+    if (options_.max_solver_time_s > 0)
+      solver.max_solver_time_in_seconds = options_.max_solver_time_s;
+    solver.num_threads = 1;
+    ceres::Solver::Summary summary;
+    ceres::Solve(solver, &problem, &summary);
+    if (solve != WindowSolve::kWindowAndPlaneCovariances) return;
+    // A long solve leaves the covariances and the marginalization that follow it to the next
+    // frame (summary.iterations counts the starting point too).
+    const int iterations = static_cast<int>(summary.iterations.size()) - 1;
+    if (iterations > options_.max_iterations_before_deferring) {
+      keyframe_work_deferred_ = true;
+      return;
+    }
   }
   // The covariances count the held planes' uncertainty (what the prior knows of them): held, they
   // would be taken as exact and the others' sigmas shrink (a wall's offset 0.16 -> 0.05 m, for an

@@ -51,9 +51,9 @@ struct RunResult {
   size_t refined_poses = 0;
   PlaneErrors map;
   std::string refinement_report;
+  size_t frames_finishing_keyframe_work = 0;  // FrameReport::finished_keyframe_work
   // Solves in which a window plane had fewer than kMinPlanePoints landmarks seen in the last 3.5 s
   // (longer than the window), so no homography factor, and how far its (n, d) moved in them.
-  size_t frames_finishing_keyframe_work = 0;  // FrameReport::finished_keyframe_work
   size_t solves_without_plane_factors = 0;
   double largest_move_without_factors = 0;  // normal change (rad) + offset change (m)
   // Each pose's tilt error (deg): the angle between the estimated and the true gravity direction
