@@ -51,7 +51,8 @@ const Sequence& sequence(const std::string& profile) {
 void trackSequence(benchmark::State& state, bool masks,
                    int detection_level = rpvio::TrackerOptions{}.detection_level,
                    int min_plane_features = rpvio::TrackerOptions{}.min_plane_features,
-                   const std::string& profile = "paper") {
+                   const std::string& profile = "paper",
+                   int max_features = rpvio::TrackerOptions{}.max_features) {
   const Sequence& sequence_ = sequence(profile);
   const auto& images = sequence_.frames;
   const rpvio::sim::SimConfig& config = sequence_.config;
@@ -59,6 +60,7 @@ void trackSequence(benchmark::State& state, bool masks,
   options.use_masks = masks;
   options.detection_level = detection_level;
   options.min_plane_features = min_plane_features;
+  options.max_features = max_features;
   const rpvio::CameraIntrinsics camera = config.calibration().camera;
   size_t features = 0, tracked = 0;
   std::vector<double> frame_seconds;
@@ -87,6 +89,11 @@ void trackSequence(benchmark::State& state, bool masks,
 
 void BM_FrontendPlaneMasks(benchmark::State& state) { trackSequence(state, true); }
 void BM_FrontendNoMasks(benchmark::State& state) { trackSequence(state, false); }
+// rpvio-auto's front-end: no masks, 250 features.
+void BM_FrontendNoMasks250Features(benchmark::State& state) {
+  const rpvio::TrackerOptions defaults;
+  trackSequence(state, false, defaults.detection_level, defaults.min_plane_features, "paper", 250);
+}
 // Corners detected on the half-resolution image (the `detection_level = 1` option).
 void BM_FrontendPlaneMasksHalfResolutionCorners(benchmark::State& state) {
   trackSequence(state, true, 1);
@@ -109,6 +116,7 @@ BENCHMARK(BM_FrontendPlaneMasksHandheld1280x720FullResolutionCorners)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_FrontendNoMasks)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_FrontendNoMasks250Features)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_FrontendPlaneMasksHalfResolutionCorners)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_FrontendPlaneMasksOneSpacing)->Unit(benchmark::kMillisecond)->UseRealTime();
 

@@ -30,7 +30,8 @@ struct SimulatorRun {
 /// What differs from the defaults (rpvio-single without verification, 20 Hz).
 struct RunSetup {
   HomographyPlanes homography = EstimatorOptions{}.homography_planes;
-  bool discover_planes = false;   // rpvio-auto: no masks, init_window_s 2.5 (its config's)
+  bool discover_planes = false;   // rpvio-auto: no masks, 250 features, init_window_s 2.5 (its
+                                  // config's)
   double camera_rate = 20;        // Hz, the simulator's default
   std::string profile = "paper";  // the simulator's (its camera rate then the profile's)
   double camera_height_sigma = EstimatorOptions{}.camera_height_sigma;
@@ -58,6 +59,7 @@ SimulatorRun runOnSimulator(int characters, double duration, const RunSetup& set
   const auto imu = sim.imuStream();
   TrackerOptions tracking;
   tracking.use_masks = !setup.discover_planes;
+  if (setup.discover_planes) tracking.max_features = 250;
   FeatureTracker tracker(sim.calibration().camera, tracking);
   EstimatorOptions options;
   options.homography_planes = setup.homography;
