@@ -80,8 +80,10 @@ FeatureFrame PlaneVerifier::filter(const FeatureFrame& frame,
     for (const auto& [plane, error_px] : result.distance_px) {
       if (error_px < options_.static_px) {
         disagreements_[plane] = 0;
+        judged_static_.insert(plane);
       } else if (error_px > moving_px && ++disagreements_[plane] >= options_.reject_after) {
         rejected_.insert(plane);
+        judged_static_.erase(plane);
         rejections_.push_back({frame.t, plane, error_px});
       }
     }

@@ -54,6 +54,9 @@ class PlaneVerifier {
 
   const std::vector<PlaneRejection>& rejections() const { return rejections_; }
   const std::set<int>& rejected() const { return rejected_; }
+  /// Planes a check has found static at least once (and not rejected since): only these may get
+  /// homography factors and map entries; a plane too small or too far to be judged never does.
+  const std::set<int>& judgedStatic() const { return judged_static_; }
 
   struct CheckResult {
     std::map<int, double> distance_px;  // per judged plane: median epipolar distance
@@ -68,7 +71,7 @@ class PlaneVerifier {
   PlaneVerifierOptions options_;
   RotatedFrameHistory history_;
   std::map<int, int> disagreements_;  // consecutive, per plane
-  std::set<int> rejected_;
+  std::set<int> rejected_, judged_static_;
   std::vector<PlaneRejection> rejections_;
 };
 

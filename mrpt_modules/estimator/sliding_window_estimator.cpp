@@ -407,7 +407,7 @@ void SlidingWindowEstimator::startWindow(const InitializedWindow& init) {
     map_.newWorld();
   initialized_ = true;
   last_seen_features_t_ = window_.back()->features.t;
-  planes_.choose(features_);
+  planes_.choose(features_, homographyEligible());
   features_.triangulate(cameraLookup(), options_.min_triangulation_angle_deg * M_PI / 180,
                         kMinDepth, kMaxDepth);
   // The planes the window already triangulates, as after every later frame: the first solve with
@@ -543,7 +543,7 @@ std::optional<StateEstimate> SlidingWindowEstimator::addFrame(
   window_.push_back(std::move(f));
 
   const bool keyframe = secondNewestIsKeyframe();
-  planes_.choose(features_);
+  planes_.choose(features_, homographyEligible());
   features_.triangulate(cameraLookup(), options_.min_triangulation_angle_deg * M_PI / 180,
                         kMinDepth, kMaxDepth);
   planes_.initialize(features_, cameraLookup(), camera(window_.back()->id).translation(),

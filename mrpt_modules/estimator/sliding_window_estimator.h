@@ -104,6 +104,15 @@ class SlidingWindowEstimator {
   /// way also leave the window.
   FeatureFrame screenPlanes(const FeatureFrame& frame, const std::vector<ImuSample>& imu);
   void dropPlaneFromWindow(int plane_id);
+  /// With verify_planes and homography factors on every plane, the planes a check found static
+  /// (the only ones that may get homography factors and map entries: a plane too small to be judged
+  /// could be a moving one); else none given: every plane may. The largest plane is judged
+  /// whenever a check judges anything; requiring it (hard seed-1 C8) made rpvio-single worse.
+  const std::set<int>* homographyEligible() const {
+    return options_.verify_planes && options_.homography_planes == HomographyPlanes::kAll
+               ? &plane_verifier_.judgedStatic()
+               : nullptr;
+  }
   struct Frame {
     uint64_t id = 0;
     FeatureFrame features;

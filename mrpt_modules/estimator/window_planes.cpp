@@ -30,10 +30,11 @@ PlaneEstimate WindowPlanes::newEstimate(const double* normal, double distance) {
   return e;
 }
 
-void WindowPlanes::choose(const FeatureManager& features) {
+void WindowPlanes::choose(const FeatureManager& features, const std::set<int>* eligible) {
   std::map<int, size_t> count;  // tracks per plane label in the window
   for (const auto& [id, track] : features.tracks())
-    if (track.plane_id > 0) ++count[track.plane_id];
+    if (track.plane_id > 0 && (!eligible || eligible->count(track.plane_id)))
+      ++count[track.plane_id];
   if (which_ != HomographyPlanes::kLargest) {
     used_.clear();
     if (which_ == HomographyPlanes::kAll)

@@ -33,8 +33,9 @@ class WindowPlanes {
   PlaneEstimates& estimates() { return planes_; }
   const PlaneEstimates& estimates() const { return planes_; }
   /// The labels whose features get homography factors: none, every plane, or the one with most
-  /// tracks, kept while it has 70% of the best count.
-  void choose(const FeatureManager& features);
+  /// tracks, kept while it has 70% of the best count; among `eligible` only, if given.
+  void choose(const FeatureManager& features, const std::set<int>* eligible = nullptr);
+  const std::set<int>& chosen() const { return used_; }
   /// Parameters for the chosen planes without: the map's entry of the label, else a fit of the
   /// plane's triangulated features (seen 3 times) when at least kMinPlanePoints and planar within
   /// kMaxPlaneRmsPerDepth of their distance to the newest camera.

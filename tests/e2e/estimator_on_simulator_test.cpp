@@ -10,6 +10,7 @@
 #include "mrpt_modules/estimator/map_builder.h"
 #include "mrpt_modules/estimator/sliding_window_estimator.h"
 #include "mrpt_modules/frontend/feature_tracker.h"
+#include "sim/sequence_name.h"
 #include "sim/simulator.h"
 
 namespace rpvio {
@@ -36,6 +37,8 @@ struct RunSetup {
   std::string profile = "paper";  // the simulator's (its camera rate then the profile's)
   double camera_height_sigma = EstimatorOptions{}.camera_height_sigma;
   bool motion_only_between_keyframes = EstimatorOptions{}.motion_only_between_keyframes;
+  bool moving_objects = false;  // the MP sequences' pallet trucks and sliding panels
+  bool verify_planes = false;
 };
 
 /// Whether a plane of `before` has other parameters in `after`.
@@ -55,6 +58,7 @@ SimulatorRun runOnSimulator(int characters, double duration, const RunSetup& set
   config.duration = duration;
   config.scene.characters = characters;
   if (setup.profile == "paper") config.camera_rate = setup.camera_rate;
+  config = sim::withSequenceContent(config, {characters, setup.moving_objects});
   sim::Simulator sim(config);
   const auto imu = sim.imuStream();
   TrackerOptions tracking;
@@ -67,6 +71,7 @@ SimulatorRun runOnSimulator(int characters, double duration, const RunSetup& set
   if (setup.discover_planes) options.init_window_s = 2.5;
   options.camera_height_sigma = setup.camera_height_sigma;
   options.motion_only_between_keyframes = setup.motion_only_between_keyframes;
+  options.verify_planes = setup.verify_planes;
   MapBuilder map(PlanesMapOptions{}, MapBuilderOptions{});
   SlidingWindowEstimator estimator(sim.calibration(), options, map);
   SimulatorRun run;
@@ -211,6 +216,22 @@ TEST(EstimatorOnSimulator, AutoModeFindsItsPlanesAndTracksWithoutMasks) {
   // tracks' noise, discover_plane_sigmas). Issue #34's target on the 80 s sequences: 0.08 m.
   EXPECT_LT(run.trajectory.ate.rmse, 0.08);
   EXPECT_EQ(run.resets, 0u);
+}
+
+// rpvio-multi with plane verification on the hard profile's moving planar objects: the pallet
+// trucks' small faces, too small to be judged, get no homography factors and no map entry.
+// Measured 0.050 m and none; with homography factors on unjudged planes too, 0.176 m and 2.
+TEST(EstimatorOnSimulator, PlanesNeverJudgedStaticStayOutOfTheMap) {
+  RunSetup setup;
+  setup.homography = HomographyPlanes::kAll;
+  setup.profile = "hard";
+  setup.moving_objects = true;
+  setup.verify_planes = true;
+  const SimulatorRun run = runOnSimulator(0, 20.0, setup);
+  std::printf("hard MP 20 s, rpvio-multi: ATE RMSE %.3f m, map entries on moving objects %zu\n",
+              run.trajectory.ate.rmse, run.planes.on_moving);
+  EXPECT_EQ(run.planes.on_moving, 0u);
+  EXPECT_LT(run.trajectory.ate.rmse, 0.10);
 }
 
 // The plane map's covariances (the windows' information, fused over visits) against the truth,

@@ -59,6 +59,14 @@ TEST(PlaneVerifier, APanelDrivingTowardsTheCameraIsRejectedTheWallAndFloorAreNot
   EXPECT_GT(verifier.rejections()[0].error_px, 1.0);
 }
 
+// Only planes found static may get homography factors: the wall and floor, and the panel while it
+// stands still; a rejected panel is not among them.
+TEST(PlaneVerifier, PlanesJudgedStaticAreTheStaticOnes) {
+  EXPECT_EQ(run(Eigen::Vector3d(0, 0, -1.0)).judgedStatic(), (std::set<int>{kWall, kFloor}));
+  EXPECT_EQ(run(Eigen::Vector3d::Zero()).judgedStatic(), (std::set<int>{kWall, kFloor, kPanel}));
+  EXPECT_TRUE(run(Eigen::Vector3d::Zero(), false).judgedStatic().empty());
+}
+
 TEST(PlaneVerifier, AFrameGivenBeforeTheRejectionIsScreenedAgain) {
   FeatureFrame earlier;
   for (const int plane : {kWall, kFloor, kPanel}) {
