@@ -54,8 +54,8 @@ class PlaneVerifier {
 
   const std::vector<PlaneRejection>& rejections() const { return rejections_; }
   const std::set<int>& rejected() const { return rejected_; }
-  /// Planes a check has found static at least once (and not rejected since): only these may get
-  /// homography factors and map entries; a plane too small or too far to be judged never does.
+  /// Planes a check has found static at least once (and not rejected since); a plane too small or
+  /// too far to be judged never is. With homography factors on every plane, only these get them.
   const std::set<int>& judgedStatic() const { return judged_static_; }
 
   struct CheckResult {

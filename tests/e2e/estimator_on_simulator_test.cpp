@@ -56,7 +56,6 @@ bool anyPlaneMoved(const PlaneEstimates& before, const PlaneEstimates& after) {
 SimulatorRun runOnSimulator(int characters, double duration, const RunSetup& setup = {}) {
   sim::SimConfig config = sim::SimConfig::profile(setup.profile);
   config.duration = duration;
-  config.scene.characters = characters;
   if (setup.profile == "paper") config.camera_rate = setup.camera_rate;
   config = sim::withSequenceContent(config, {characters, setup.moving_objects});
   sim::Simulator sim(config);
