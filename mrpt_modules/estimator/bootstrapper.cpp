@@ -89,7 +89,8 @@ std::optional<InitializedWindow> Bootstrapper::tryInitialize() {
     if (k > 0 && !imu.back()) return std::nullopt;  // a frame without IMU: wait for a clean window
   }
   InitializationResult init =
-      (last_good_ ? reinitializer_ : initializer_).tryInitialize(frames, imu);
+      last_good_ ? reinitializer_.tryInitialize(frames, imu, knownStart(frames[0].t))
+                 : initializer_.tryInitialize(frames, imu);
   if (!last_good_ && init.status == InitStatus::kGeometryFailed && options_.init_fallback &&
       options_.initializer != InitializerMethod::kEssentialMatrix) {
     if (first_geometry_failure_t_ < 0) first_geometry_failure_t_ = frames.back().t;
@@ -172,19 +173,32 @@ InitializedWindow Bootstrapper::window(const std::vector<FeatureFrame>& frames,
   return w;
 }
 
-std::optional<WorldShift> Bootstrapper::reconnect(double t, const double* pose) {
-  if (!last_good_) return std::nullopt;
-  std::vector<ImuSample> samples;  // up to the first keyframe
+bool Bootstrapper::deadReckon(double t, double* pose, double* speed_bias) const {
+  if (!last_good_) return false;
+  std::vector<ImuSample> samples;
   for (const ImuSample& sample : imu_since_good_)
     if (sample.t <= t) samples.push_back(sample);
   const auto pre =
       imu_link_.preintegrate(samples, last_good_->t, t, last_good_->speed_bias, &calib_.imu);
-  const GoodState good = *last_good_;
+  if (!pre) return false;
+  imu_link_.predict(last_good_->pose, last_good_->speed_bias, *pre, pose, speed_bias);
+  return true;
+}
+
+std::optional<KnownStart> Bootstrapper::knownStart(double t) const {
+  double pose[7], speed_bias[9];
+  if (!last_good_ || t <= last_good_->t || t - last_good_->t > options_.reinit_known_velocity_s ||
+      !deadReckon(t, pose, speed_bias))
+    return std::nullopt;
+  return KnownStart{poseRotation(pose).toRotationMatrix(), Eigen::Vector3d(speed_bias)};
+}
+
+std::optional<WorldShift> Bootstrapper::reconnect(double t, const double* pose) {
+  double predicted_pose[7], predicted_speed_bias[9];  // at the first keyframe
+  const bool reckoned = deadReckon(t, predicted_pose, predicted_speed_bias);
   last_good_.reset();
   imu_since_good_.clear();
-  if (!pre) return std::nullopt;
-  double predicted_pose[7], predicted_speed_bias[9];
-  imu_link_.predict(good.pose, good.speed_bias, *pre, predicted_pose, predicted_speed_bias);
+  if (!reckoned) return std::nullopt;
   // Both worlds have z up: they differ by a yaw and a translation.
   const Eigen::Matrix3d M = poseRotation(predicted_pose).toRotationMatrix() *
                             poseRotation(pose).toRotationMatrix().transpose();

@@ -83,6 +83,12 @@ class Bootstrapper {
   double significantTimeOffset(const InitializationResult& init);
   /// The IMU samples of the buffer, in time order, once each.
   std::vector<ImuSample> bufferSamples() const;
+  /// The body's orientation and velocity at time t by IMU dead reckoning from the last good state
+  /// (after a reset), for the re-initialization's alignment; none before the first initialization.
+  std::optional<KnownStart> knownStart(double t) const;
+  /// The pose and speed_bias at time t by IMU dead reckoning from the last good state; false
+  /// without one or without IMU samples.
+  bool deadReckon(double t, double* pose, double* speed_bias) const;
   /// Moves the buffered frames (and the offset) by dt and deals their IMU samples out again.
   void moveBuffer(double dt);
 

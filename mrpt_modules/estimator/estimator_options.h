@@ -80,6 +80,11 @@ struct EstimatorOptions {
   // Re-initialization after a reset: mid-flight accelerations make the scale less observable
   // than the take-off, so the alignment's scale may be this uncertain (the window refines it) ...
   double reinit_max_scale_sigma = 0.10;
+  // ... unless its window starts within this long (s) of the last good state: the velocity dead
+  // reckoned from that state is then taken as the window's first velocity, which gives the scale
+  // without excitation. The dead reckoning's velocity error grows by ~0.03 m/s per second
+  // (accelerometer bias and tilt), 3 % of a 1 m/s flight after one second. 0: never.
+  double reinit_known_velocity_s = 3.0;
   // ... by this method: the homography initializer's structure fails mid-flight on the simulator
   // (bundle adjustment diverges), the essential-matrix one (on the same, masked features) works.
   InitializerMethod reinitializer = InitializerMethod::kEssentialMatrix;
@@ -173,6 +178,7 @@ struct EstimatorOptions {
     RPVIO_OPTION(v, init_fallback_after_s);
     RPVIO_OPTION_CHOICE(v, reinitializer, kInitializerMethodNames);
     RPVIO_OPTION(v, reinit_max_scale_sigma);
+    RPVIO_OPTION(v, reinit_known_velocity_s);
     RPVIO_OPTION(v, max_reconnect_s);
     RPVIO_OPTION(v, estimate_time_offset);
     RPVIO_OPTION(v, min_time_offset_s);

@@ -123,8 +123,9 @@ const char* toString(InitStatus status) {
 Initializer::Initializer(const Calibration& calibration, const InitializerOptions& options)
     : mrpt::system::COutputLogger("Initializer"), calibration_(calibration), options_(options) {}
 
-InitializationResult Initializer::tryInitialize(const Frames& frames, const Preintegrations& imu) {
-  InitializationResult result = attempt(frames, imu);
+InitializationResult Initializer::tryInitialize(const Frames& frames, const Preintegrations& imu,
+                                                const std::optional<KnownStart>& start) {
+  InitializationResult result = attempt(frames, imu, start);
   if (result.status != last_status_) {
     MRPT_LOG_INFO_STREAM("t=" << timeText(frames.empty() ? 0.0 : frames.back().t) << ": "
                               << result.reason);
@@ -133,8 +134,8 @@ InitializationResult Initializer::tryInitialize(const Frames& frames, const Prei
   return result;
 }
 
-InitializationResult Initializer::attempt(const Frames& all_frames,
-                                          const Preintegrations& imu) const {
+InitializationResult Initializer::attempt(const Frames& all_frames, const Preintegrations& imu,
+                                          const std::optional<KnownStart>& start) const {
   const InitializerOptions& o = options_;
   const size_t n = all_frames.size();
   if (n < std::max<size_t>(o.min_frames, 4) || imu.size() != n)
@@ -293,7 +294,11 @@ InitializationResult Initializer::attempt(const Frames& all_frames,
     if (!aligned) ground.reset();
   }
   if (!aligned) {
-    aligned = alignVisualInertial(up_to_scale, calibration_.T_BC, calibration_.imu.gravity, &why);
+    // A known start: its body velocity in camera 0, v_c0 = (R_w_b R_BC)ᵀ v_w.
+    std::optional<KnownVelocity> first_velocity;
+    if (start) first_velocity = KnownVelocity{(start->R_w_b * R_BC).transpose() * start->v_w};
+    aligned = alignVisualInertial(up_to_scale, calibration_.T_BC, calibration_.imu.gravity, &why,
+                                  {}, first_velocity);
     if (!aligned) return failure(InitStatus::kAlignmentRejected, why);
     if (aligned->scale_sigma > o.max_relative_scale_sigma * aligned->scale)
       return failure(

@@ -100,6 +100,14 @@ struct InitializationResult {
   bool ok() const { return status == InitStatus::kSuccess; }
 };
 
+/// The body's orientation and velocity at the window's first frame, known from before a reset
+/// (IMU dead reckoning from the last good state): the alignment then takes its velocity as given,
+/// and needs no excitation for the scale.
+struct KnownStart {
+  Eigen::Matrix3d R_w_b = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d v_w = Eigen::Vector3d::Zero();
+};
+
 class Initializer : public mrpt::system::COutputLogger {
  public:
   Initializer(const Calibration& calibration, const InitializerOptions& options);
@@ -107,13 +115,15 @@ class Initializer : public mrpt::system::COutputLogger {
   /// frames[k] and imu[k] (IMU from frame k−1 to k; imu[0] is ignored and may be null). The
   /// caller's preintegrations are not modified. Logs the reason (INFO) when the status changes.
   InitializationResult tryInitialize(const std::vector<FeatureFrame>& frames,
-                                     const std::vector<std::shared_ptr<ImuPreintegration>>& imu);
+                                     const std::vector<std::shared_ptr<ImuPreintegration>>& imu,
+                                     const std::optional<KnownStart>& start = {});
 
   const InitializerOptions& options() const { return options_; }
 
  private:
   InitializationResult attempt(const std::vector<FeatureFrame>& frames,
-                               const std::vector<std::shared_ptr<ImuPreintegration>>& imu) const;
+                               const std::vector<std::shared_ptr<ImuPreintegration>>& imu,
+                               const std::optional<KnownStart>& start) const;
 
   Calibration calibration_;
   InitializerOptions options_;
