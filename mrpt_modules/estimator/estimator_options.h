@@ -82,9 +82,10 @@ struct EstimatorOptions {
   double reinit_max_scale_sigma = 0.10;
   // ... unless its window starts within this long (s) of the last good state: the velocity dead
   // reckoned from that state is then taken as the window's first velocity, which gives the scale
-  // without excitation. The dead reckoning's velocity error grows by ~0.03 m/s per second
-  // (accelerometer bias and tilt), 3 % of a 1 m/s flight after one second. 0: never.
-  double reinit_known_velocity_s = 3.0;
+  // without excitation. Off (0): it re-initializes sooner, but the dead reckoning's velocity error
+  // (~0.03 m/s per second without vision) made both measured cases less accurate
+  // (docs/notes/2026-11-29-hard-scale-drift.md).
+  double reinit_known_velocity_s = 0;
   // ... by this method: the homography initializer's structure fails mid-flight on the simulator
   // (bundle adjustment diverges), the essential-matrix one (on the same, masked features) works.
   InitializerMethod reinitializer = InitializerMethod::kEssentialMatrix;
