@@ -295,10 +295,10 @@ InitializationResult Initializer::attempt(const Frames& all_frames, const Preint
   }
   if (!aligned) {
     // A known start: its body velocity in camera 0, v_c0 = (R_w_b R_BC)ᵀ v_w.
-    std::optional<KnownVelocity> first_velocity;
-    if (start) first_velocity = KnownVelocity{(start->R_w_b * R_BC).transpose() * start->v_w};
+    std::optional<Eigen::Vector3d> v_c0;
+    if (start) v_c0 = (start->R_w_b * R_BC).transpose() * start->v_w;
     aligned = alignVisualInertial(up_to_scale, calibration_.T_BC, calibration_.imu.gravity, &why,
-                                  {}, first_velocity);
+                                  {}, v_c0);
     if (!aligned) return failure(InitStatus::kAlignmentRejected, why);
     if (aligned->scale_sigma > o.max_relative_scale_sigma * aligned->scale)
       return failure(

@@ -40,21 +40,21 @@ Eigen::VectorXd solveLinear(const std::vector<UpToScaleFrame>& frames,
                             const Eigen::Isometry3d& T_BC, const Eigen::Vector3d* g_fixed,
                             double gravity, double* scale_sigma = nullptr,
                             std::optional<double> known_scale = {},
-                            const KnownVelocity* first_velocity = nullptr) {
+                            const std::optional<Eigen::Vector3d>& first_velocity_c0 = {}) {
   const int n = static_cast<int>(frames.size());
   const int g_dims = g_fixed ? 5 : 3;  // with g fixed: w (2) + δba (3)
   const int unknowns = 3 * n + g_dims + 1;
   // With g fixed, three more rows: a prior δba ≈ 0 (the accelerometer bias is weakly observable
   // over a short window: a constant body-frame acceleration looks like a bias).
   const int prior_rows = g_fixed ? 3 : 0;
-  const int velocity_rows = first_velocity ? 3 : 0;  // v_0 = v_c0, after the bias prior's rows
+  const int velocity_rows = first_velocity_c0 ? 3 : 0;  // v_0 = v_c0, after the bias prior's rows
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(6 * (n - 1) + prior_rows + velocity_rows, unknowns);
   Eigen::VectorXd b = Eigen::VectorXd::Zero(A.rows());
   if (g_fixed)
     A.block<3, 3>(6 * (n - 1), 3 * n + 2) = kAccelBiasPriorWeight * Eigen::Matrix3d::Identity();
-  if (first_velocity) {
+  if (first_velocity_c0) {
     A.block<3, 3>(6 * (n - 1) + prior_rows, 0) = Eigen::Matrix3d::Identity();
-    b.segment<3>(6 * (n - 1) + prior_rows) = first_velocity->v_c0;
+    b.segment<3>(6 * (n - 1) + prior_rows) = *first_velocity_c0;
   }
   Eigen::Matrix<double, 3, 2> B = Eigen::Matrix<double, 3, 2>::Zero();  // used when g_fixed
   Eigen::Vector3d g0 = Eigen::Vector3d::Zero();
@@ -148,8 +148,7 @@ Eigen::Vector3d solveGyroBias(std::vector<UpToScaleFrame>& frames, const Eigen::
 std::optional<AlignmentResult> alignVisualInertial(
     std::vector<UpToScaleFrame>& frames, const Eigen::Isometry3d& T_BC, double gravity,
     std::string* why_not, std::optional<double> known_scale,
-    const std::optional<KnownVelocity>& first_velocity) {
-  const KnownVelocity* v0 = first_velocity ? &*first_velocity : nullptr;
+    const std::optional<Eigen::Vector3d>& first_velocity_c0) {
   auto fail = [&](const std::string& reason) {
     if (why_not) *why_not = reason;
     return std::nullopt;
@@ -158,7 +157,8 @@ std::optional<AlignmentResult> alignVisualInertial(
   AlignmentResult result;
   result.gyro_bias = solveGyroBias(frames, T_BC);
   const int n = static_cast<int>(frames.size());
-  Eigen::VectorXd x = solveLinear(frames, T_BC, nullptr, gravity, nullptr, known_scale, v0);
+  Eigen::VectorXd x =
+      solveLinear(frames, T_BC, nullptr, gravity, nullptr, known_scale, first_velocity_c0);
   const Eigen::Vector3d g_free = x.segment<3>(3 * n);
   if (x(3 * n + 3) <= 0) return fail("alignment rejected: non-positive scale");
   if (std::abs(g_free.norm() - gravity) > 0.2 * gravity)
@@ -166,7 +166,7 @@ std::optional<AlignmentResult> alignVisualInertial(
   // Refinement on the sphere |g| = gravity (2 degrees of freedom), a few re-linearizations.
   Eigen::Vector3d g = g_free;
   for (int iteration = 0; iteration < 4; ++iteration) {
-    x = solveLinear(frames, T_BC, &g, gravity, &result.scale_sigma, known_scale, v0);
+    x = solveLinear(frames, T_BC, &g, gravity, &result.scale_sigma, known_scale, first_velocity_c0);
     g = x.segment<3>(3 * n);
   }
   result.scale = x(3 * n + 3);

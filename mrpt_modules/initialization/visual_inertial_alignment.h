@@ -30,12 +30,6 @@ struct AlignmentResult {
   std::vector<Eigen::Vector3d> velocity_c0;  // body velocity of each frame, c0 frame
 };
 
-/// The body velocity of the window's first frame known from elsewhere (dead reckoning with the IMU
-/// from the state before a reset), in the c0 frame: with it the scale needs no excitation.
-struct KnownVelocity {
-  Eigen::Vector3d v_c0 = Eigen::Vector3d::Zero();
-};
-
 /// Gyro bias by least squares on the rotations between consecutive frames; repropagates the
 /// preintegrations with it. `T_BC`: camera in body.
 Eigen::Vector3d solveGyroBias(std::vector<UpToScaleFrame>& frames, const Eigen::Isometry3d& T_BC);
@@ -43,11 +37,12 @@ Eigen::Vector3d solveGyroBias(std::vector<UpToScaleFrame>& frames, const Eigen::
 /// Full alignment; on failure (negative scale, gravity magnitude far from `gravity`), nullopt and
 /// the reason in `why_not`. With `known_scale` (metres per unit of p_c0_c, e.g. from the camera's
 /// height above the ground plane) the scale is not solved for: scale_sigma is 0. With
-/// `first_velocity`, v_0 = v_c0 enters as three more equations, weighted as the IMU's velocity
-/// equations are.
+/// `first_velocity_c0` (the first frame's body velocity in c0, known from elsewhere, e.g. dead
+/// reckoning from the state before a reset), v_0 = v_c0 enters as three more equations, weighted
+/// as the IMU's velocity equations are: the scale then needs no excitation.
 std::optional<AlignmentResult> alignVisualInertial(
     std::vector<UpToScaleFrame>& frames, const Eigen::Isometry3d& T_BC, double gravity,
     std::string* why_not = nullptr, std::optional<double> known_scale = {},
-    const std::optional<KnownVelocity>& first_velocity = {});
+    const std::optional<Eigen::Vector3d>& first_velocity_c0 = {});
 
 }  // namespace rpvio

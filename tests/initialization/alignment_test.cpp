@@ -111,7 +111,7 @@ TEST(VisualInertialAlignment, AKnownFirstVelocityAlignsWhereTheAccelerationsDoNo
   std::vector<UpToScaleFrame> known_frames = windowFrames(sim, imu, unknown_scale, start);
   const Eigen::Isometry3d T_w_c0 = sim.cameraPose(start);
   const Eigen::Vector3d v_true_c0 = T_w_c0.linear().transpose() * sim.state(start).v;
-  const KnownVelocity v0{v_true_c0 + Eigen::Vector3d(0.02, 0, 0)};
+  const Eigen::Vector3d v0 = v_true_c0 + Eigen::Vector3d(0.02, 0, 0);
   std::string why;
   const auto free = alignVisualInertial(free_frames, config.camera.T_BC(), 9.81, &why);
   const auto known = alignVisualInertial(known_frames, config.camera.T_BC(), 9.81, &why, {}, v0);
