@@ -135,20 +135,26 @@ cv::Mat decodeImageFile(const std::string& file, const std::string& rawlog,
 
 }  // namespace
 
-cv::Mat loadGrayImage(const mrpt::obs::CObservationImage& obs, const RawlogReader& reader) {
-  const std::string entry = "entry " + std::to_string(reader.entriesRead());
-  std::string file;
-  if (obs.image.isExternallyStored()) {
-    file = obs.image.getExternalStorageFile();
-    if (fs::path(file).is_relative()) file = (fs::path(reader.imagesDir()) / file).string();
-  } else {
-    throw InputError(reader.path(), entry, "image is not stored externally (DESIGN.md §4)");
-  }
-  cv::Mat img = decodeImageFile(file, reader.path(), entry);
+ImageFileRef locateImage(const mrpt::obs::CObservationImage& obs, const RawlogReader& reader) {
+  ImageFileRef ref{"", reader.path(), "entry " + std::to_string(reader.entriesRead())};
+  if (!obs.image.isExternallyStored())
+    throw InputError(ref.rawlog, ref.entry, "image is not stored externally (DESIGN.md §4)");
+  ref.file = obs.image.getExternalStorageFile();
+  if (fs::path(ref.file).is_relative())
+    ref.file = (fs::path(reader.imagesDir()) / ref.file).string();
+  return ref;
+}
+
+cv::Mat decodeGrayImage(const ImageFileRef& ref) {
+  cv::Mat img = decodeImageFile(ref.file, ref.rawlog, ref.entry);
   if (img.channels() == 3) cv::cvtColor(img, img, cv::COLOR_BGR2GRAY);
   if (img.type() != CV_8UC1)
-    throw InputError(reader.path(), entry, "image is not 8-bit grayscale: " + file);
+    throw InputError(ref.rawlog, ref.entry, "image is not 8-bit grayscale: " + ref.file);
   return img;
+}
+
+cv::Mat loadGrayImage(const mrpt::obs::CObservationImage& obs, const RawlogReader& reader) {
+  return decodeGrayImage(locateImage(obs, reader));
 }
 
 ImuSample toImuSample(const mrpt::obs::CObservationIMU& obs, const RawlogReader& reader) {

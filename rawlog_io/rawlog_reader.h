@@ -35,8 +35,19 @@ class RawlogReader {
 double toSeconds(const mrpt::Clock::time_point& t);
 mrpt::Clock::time_point fromSeconds(double t);
 
-/// The 8-bit image of a CAM0/PLANE_MASK observation, loaded from disk (then unloaded from obs).
-/// Throws InputError(rawlog, "entry N") naming the missing image file.
+/// Where the pixels of a CAM0/PLANE_MASK observation are: the file, and the rawlog position that
+/// names it (for errors). Found while the reader is at that entry; decodable later, on any thread.
+struct ImageFileRef {
+  std::string file;
+  std::string rawlog;
+  std::string entry;  // "entry N"
+};
+/// Throws InputError(rawlog, "entry N") when the image is not stored in a file.
+ImageFileRef locateImage(const mrpt::obs::CObservationImage& obs, const RawlogReader& reader);
+/// The 8-bit image of the file. Throws InputError(rawlog, "entry N") naming a missing or
+/// undecodable file.
+cv::Mat decodeGrayImage(const ImageFileRef& ref);
+/// decodeGrayImage(locateImage(obs, reader)).
 cv::Mat loadGrayImage(const mrpt::obs::CObservationImage& obs, const RawlogReader& reader);
 /// Throws InputError(rawlog, "entry N") when a value is NaN/inf or missing.
 ImuSample toImuSample(const mrpt::obs::CObservationIMU& obs, const RawlogReader& reader);

@@ -54,6 +54,7 @@ std::array<bool, 256> labelsIn(const cv::Mat& mask) {
 void TrackerOptions::validate(const OptionsLoader& loader) const {
   loader.require(detection_level >= -1 && detection_level <= 3, "detection_level",
                  "must be 0 (full resolution) to 3, or -1 (by the image's width)");
+  loader.require(frames_in_flight >= 1, "frames_in_flight", "must be at least 1");
 }
 
 FeatureTracker::FeatureTracker(const CameraIntrinsics& camera, const TrackerOptions& options)

@@ -77,10 +77,11 @@ struct TrackerOptions {
   // with -1 on the coarsest level still kAutoDetectionWidth px wide (0 below 1280 px).
   int detection_level = -1;
   static constexpr int kAutoDetectionWidth = 640;
-  // FeatureTrackerModule: track image k+1 on a second thread while the modules after it work on
-  // frame k (the same outputs, one frame later on the bus; stats.csv's per-frame times then
-  // overlap).
+  // FeatureTrackerModule: decode and track the images on a second thread while the modules after
+  // it work on earlier frames, up to frames_in_flight images ahead (the same outputs, that many
+  // frames later on the bus; stats.csv's per-frame times then overlap).
   bool pipelined = false;
+  int frames_in_flight = 3;
 
   template <class Visitor>
   void fields(Visitor& v) {
@@ -106,6 +107,7 @@ struct TrackerOptions {
     RPVIO_OPTION(v, local_warps);
     RPVIO_OPTION(v, detection_level);
     RPVIO_OPTION(v, pipelined);
+    RPVIO_OPTION(v, frames_in_flight);
   }
   void validate(const OptionsLoader& loader) const;
   /// Reads the keys present in `section` (others keep their defaults).

@@ -25,8 +25,11 @@ void FeatureTrackerModule::initialize(const IniFile& config, const std::string& 
                                       PipelineContext& context) {
   const TrackerOptions options = TrackerOptions::load(config, section);
   use_masks_ = options.use_masks;
-  pipelined_ = options.pipelined;
   tracker_ = std::make_unique<FeatureTracker>(context.calibration.camera, options);
+  if (options.pipelined) {
+    frames_in_flight_ = size_t(options.frames_in_flight);
+    worker_ = std::make_unique<SerialWorker>();
+  }
   bus_ = &context.bus;
   context.bus.subscribeSensor(labels::kCamera, [this](const auto& m) { onImage(m); });
   if (use_masks_)
@@ -36,30 +39,23 @@ void FeatureTrackerModule::initialize(const IniFile& config, const std::string& 
     time_offset_ = context.calibration.time_offset;
     context.bus.subscribeSensor(labels::kImu, [this](const auto& m) { onImu(m); });
   }
-  // The frame still in flight goes out before the others hear of the run's end (this module
+  // The frames still in flight go out before the others hear of the run's end (this module
   // subscribes first when it is listed first, as the front-end is).
   context.bus.subscribe<RunEnd>([this](const RunEnd&) { publishInFlight(); });
   setOptionsText("[" + section + "]\n" + options.describe());
 }
 
-cv::Mat FeatureTrackerModule::timedLoad(const ObservationMessage& m) {
-  const auto start = std::chrono::steady_clock::now();
-  cv::Mat image =
-      loadGrayImage(dynamic_cast<const mrpt::obs::CObservationImage&>(*m.observation), *m.reader);
-  load_ms_ +=
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  return image;
-}
-
 void FeatureTrackerModule::onImage(const ObservationMessage& m) {
   const double t = toSeconds(m.observation->timestamp);
-  pending_images_[t] = timedLoad(m);
+  pending_images_[t] =
+      locateImage(dynamic_cast<const mrpt::obs::CObservationImage&>(*m.observation), *m.reader);
   process(t);
 }
 
 void FeatureTrackerModule::onMask(const ObservationMessage& m) {
   const double t = toSeconds(m.observation->timestamp);
-  pending_masks_[t] = timedLoad(m);
+  pending_masks_[t] =
+      locateImage(dynamic_cast<const mrpt::obs::CObservationImage&>(*m.observation), *m.reader);
   process(t);
 }
 
@@ -87,44 +83,58 @@ std::optional<Eigen::Matrix3d> FeatureTrackerModule::gyroRotationTo(double t) {
   return R_cur_prev;
 }
 
-void FeatureTrackerModule::track(double t, const cv::Mat& image, const cv::Mat& mask, bool on_bus) {
+void FeatureTrackerModule::track(double t, const ImageFileRef& image,
+                                 const std::optional<ImageFileRef>& mask, bool on_bus) {
   const auto R_cur_prev = gyroRotationTo(t);  // here: gyro_ grows on this thread
   auto run = [this, t, image, mask, R_cur_prev] {
-    Tracked r{tracker_->track(t, image, mask, R_cur_prev ? &*R_cur_prev : nullptr), {}};
+    const auto start = std::chrono::steady_clock::now();
+    const cv::Mat pixels = decodeGrayImage(image);
+    const cv::Mat mask_pixels = mask ? decodeGrayImage(*mask) : cv::Mat();
+    Tracked r;
+    r.load_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    r.frame = tracker_->track(t, pixels, mask_pixels, R_cur_prev ? &*R_cur_prev : nullptr);
     r.warnings = tracker_->takeWarnings();
     return r;
   };
-  InFlight next{t, load_ms_, on_bus, {}};
-  if (on_bus) load_ms_ = 0;  // else counted with the next published frame
-  if (!pipelined_) {
-    next.tracked = std::async(std::launch::deferred, run);
-    publish(std::move(next));
+  if (!worker_) {
+    publish(t, on_bus, run());
     return;
   }
-  std::optional<InFlight> previous = std::exchange(in_flight_, std::nullopt);
-  if (previous) previous->tracked.wait();  // the tracker takes one image at a time
-  next.tracked = std::async(std::launch::async, run);
-  in_flight_ = std::move(next);
-  if (previous) publish(std::move(*previous));
+  in_flight_.push_back({t, on_bus, worker_->submit(std::move(run))});
+  while (in_flight_.size() > frames_in_flight_) publishOldest();
+}
+
+void FeatureTrackerModule::publishOldest() {
+  InFlight oldest = std::move(in_flight_.front());
+  in_flight_.pop_front();
+  Tracked tracked;
+  try {
+    tracked = oldest.tracked.get();
+  } catch (...) {
+    in_flight_.clear();
+    throw;
+  }
+  publish(oldest.t, oldest.on_bus, tracked);
 }
 
 void FeatureTrackerModule::publishInFlight() {
-  if (auto done = std::exchange(in_flight_, std::nullopt)) publish(std::move(*done));
+  while (!in_flight_.empty()) publishOldest();
 }
 
-void FeatureTrackerModule::publish(InFlight done) {
-  const Tracked tracked = done.tracked.get();
-  for (const auto& w : tracked.warnings)
-    MRPT_LOG_WARN_STREAM("t=" << timeText(done.t) << ": " << w);
-  if (!done.on_bus) return;
-  bus_->publish(FrameDecoding{done.t, done.load_ms});
+void FeatureTrackerModule::publish(double t, bool on_bus, const Tracked& tracked) {
+  for (const auto& w : tracked.warnings) MRPT_LOG_WARN_STREAM("t=" << timeText(t) << ": " << w);
+  // Pipelined, the files are decoded on the worker: no decoding time on this thread.
+  if (!worker_) unpublished_load_ms_ += tracked.load_ms;
+  if (!on_bus) return;
+  bus_->publish(FrameDecoding{t, std::exchange(unpublished_load_ms_, 0.0)});
   bus_->publish(tracked.frame);
 }
 
 void FeatureTrackerModule::process(double t) {
   const auto image = pending_images_.find(t);
   if (image == pending_images_.end()) return;
-  cv::Mat mask;
+  std::optional<ImageFileRef> mask;
   if (use_masks_) {
     const auto it = pending_masks_.find(t);
     if (it == pending_masks_.end()) return;  // wait for the mask of this image
@@ -132,7 +142,7 @@ void FeatureTrackerModule::process(double t) {
   }
   // Images without a mask by the time a later image is complete get none (said once).
   for (auto it = pending_images_.begin(); it != image;) {
-    track(it->first, it->second, cv::Mat(), false);
+    track(it->first, it->second, std::nullopt, false);
     it = pending_images_.erase(it);
   }
   track(t, image->second, mask, true);

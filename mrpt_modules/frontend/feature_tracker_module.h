@@ -4,11 +4,13 @@
 // per image, after a FrameDecoding with the time its files took to decode. With
 // predict_rotation it also consumes IMU and hands the tracker the camera's rotation since the
 // previous image (the gyroscope's, integrated on the IMU clock: frame time + calibrated offset,
-// gyroscope bias not corrected). With pipelined, an image is tracked on a worker thread while the
-// modules after this one work on the previous frame, which is published when the next image (or
-// the run's end) arrives; the tracker itself still sees one image at a time, in order. Options:
-// section [FeatureTrackerModule] (see TrackerOptions).
+// gyroscope bias not corrected). With pipelined, images are decoded and tracked on a worker thread
+// while the modules after this one work on earlier frames: a frame is published when the
+// frames_in_flight-th image after it (or the run's end) arrives; the tracker still sees one image
+// at a time, in order, so the outputs are those of a sequential run. Options: section
+// [FeatureTrackerModule] (see TrackerOptions).
 #include <Eigen/Geometry>
+#include <deque>
 #include <future>
 #include <map>
 #include <memory>
@@ -16,7 +18,9 @@
 #include <vector>
 
 #include "mrpt_modules/core/module.h"
+#include "mrpt_modules/core/serial_worker.h"
 #include "mrpt_modules/frontend/feature_tracker.h"
+#include "rawlog_io/rawlog_reader.h"
 
 namespace rpvio {
 
@@ -33,32 +37,36 @@ class FeatureTrackerModule : public Module {
   void onMask(const ObservationMessage& message);
   void onImu(const ObservationMessage& message);
   void process(double t);
-  /// A frame being tracked, and what the tracker warned of on it.
+  /// A tracked frame, what the tracker warned of on it, and the time its files took to decode.
   struct Tracked {
     FeatureFrame frame;
     std::vector<std::string> warnings;
+    double load_ms = 0;
   };
   struct InFlight {
     double t = 0;
-    double load_ms = 0;
     bool on_bus = true;  // false: tracked, not published
     std::future<Tracked> tracked;
   };
-  /// Tracks the image (on the worker when pipelined: then the frame before it is published).
-  void track(double t, const cv::Mat& image, const cv::Mat& mask, bool on_bus);
-  /// The frame in flight, once tracked, on the bus (with its warnings logged).
+  /// Decodes and tracks the image (on the worker when pipelined, publishing the oldest frame in
+  /// flight once more than frames_in_flight are).
+  void track(double t, const ImageFileRef& image, const std::optional<ImageFileRef>& mask,
+             bool on_bus);
+  /// The oldest frame in flight, once tracked, on the bus. A frame that failed (bad input) drops
+  /// the frames after it, as a sequential run never gets to them, and throws.
+  void publishOldest();
   void publishInFlight();
-  void publish(InFlight done);
+  void publish(double t, bool on_bus, const Tracked& tracked);
   std::optional<Eigen::Matrix3d> gyroRotationTo(double t);
-  cv::Mat timedLoad(const ObservationMessage& message);
 
   std::unique_ptr<FeatureTracker> tracker_;
   const Bus* bus_ = nullptr;
   bool use_masks_ = true;
-  std::map<double, cv::Mat> pending_images_, pending_masks_;
-  double load_ms_ = 0;  // reading and decoding images and masks since the last frame
-  bool pipelined_ = false;
-  std::optional<InFlight> in_flight_;
+  std::map<double, ImageFileRef> pending_images_, pending_masks_;
+  double unpublished_load_ms_ = 0;  // decoding of tracked frames not published, for the next
+  size_t frames_in_flight_ = 0;     // 0: not pipelined
+  std::deque<InFlight> in_flight_;
+  std::unique_ptr<SerialWorker> worker_;  // after tracker_: its tasks use it until joined
   // Rotation prediction: the gyroscope since the previous image, the camera mount's rotation and
   // the camera-IMU offset of the calibration.
   std::vector<ImuSample> gyro_;

@@ -116,8 +116,10 @@ TEST(SlamApp, TruncatedRawlogKeepsTheFramesBeforeIt) {
   EXPECT_TRUE(std::filesystem::exists(dir.file("cut/planes.yaml")));
 }
 
-// Pipelined (the front-end tracks the next image on a second thread): the same outputs, to the
-// byte, on a whole rawlog and on one cut short (the frame in flight at the end is not lost).
+// Pipelined (the front-end decodes and tracks the next images on a second thread): the same
+// outputs, to the byte, on a whole rawlog, on one whose image at 4 s is not a PNG (the frames in
+// flight after it are not published: the error stops the run there, as sequentially) and on one
+// cut short (the frames in flight at the end are not lost).
 TEST(SlamApp, PipelinedRunsGiveTheSameOutputs) {
   test::TempDir dir;
   writeSimulatedSequence(dir, 6.0, 2);
@@ -131,19 +133,29 @@ TEST(SlamApp, PipelinedRunsGiveTheSameOutputs) {
   const std::string mode_config = std::string(RPVIO_SOURCE_DIR) + "/config/rpvio-multi.ini";
   pipelined.replace(pipelined.find(mode_config), mode_config.size(), dir.file("pipelined.ini"));
   const std::string rawlog = dir.file("seq/seq.rawlog");
+  const std::string image = dir.file("seq/seq_Images/CAM0_0000000004000000000.png");
+  const std::string image_bytes = test::readFile(image);
+  ASSERT_FALSE(image_bytes.empty());
   std::string out;
-  for (const std::string run : {"whole", "cut"}) {
-    if (run == "cut") std::filesystem::resize_file(rawlog, std::filesystem::file_size(rawlog) / 2);
+  for (const std::string run : {"whole", "bad_image", "cut"}) {
+    if (run == "bad_image") test::writeText(image, "not a PNG");
+    if (run == "cut") {
+      test::writeText(image, image_bytes);
+      std::filesystem::resize_file(rawlog, std::filesystem::file_size(rawlog) / 2);
+    }
     const int code = run == "whole" ? 0 : 2;
     ASSERT_EQ(test::runCommand(sequential + dir.file(run + "_sequential"), out), code) << out;
     ASSERT_EQ(test::runCommand(pipelined + dir.file(run + "_pipelined"), out), code) << out;
+    if (run == "bad_image") EXPECT_NE(out.find(image), std::string::npos) << out;
     EXPECT_NE(test::readFile(dir.file(run + "_pipelined/config_used.ini")).find("pipelined = true"),
               std::string::npos);
     for (const char* output : {"trajectory.tum", "planes.yaml", "planes.ply"})
       EXPECT_EQ(test::readFile(dir.file(run + "_sequential/") + output),
                 test::readFile(dir.file(run + "_pipelined/") + output))
           << run << " " << output;
-    EXPECT_GT(readTum(dir.file(run + "_pipelined/trajectory.tum")).size(), 10u) << run;
+    const Trajectory poses = readTum(dir.file(run + "_pipelined/trajectory.tum"));
+    EXPECT_GT(poses.size(), 10u) << run;
+    if (run == "bad_image") EXPECT_LT(poses.back().t, 4.0);
   }
 }
 
