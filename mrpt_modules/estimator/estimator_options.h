@@ -23,6 +23,9 @@ struct EstimatorOptions {
   size_t keyframe_min_tracks = 20;   // fewer common tracks: keyframe
   double max_keyframe_gap_s = 0.3;   // a keyframe at least this often
   HomographyPlanes homography_planes = HomographyPlanes::kLargest;
+  // The planes without homography factors go to the planes map too, as a fit of their
+  // triangulated features (with verify_planes, only those a check found static).
+  bool map_all_planes = false;
   double pixel_sigma = 1.5;   // factor weight: virtual_focal / pixel_sigma
   double cauchy_scale = 1.0;  // robust loss scale, in units of pixel_sigma
   // The window's IMU factors use the calibration's noise densities and random walks times this
@@ -148,6 +151,7 @@ struct EstimatorOptions {
     RPVIO_OPTION(v, keyframe_min_tracks);
     RPVIO_OPTION(v, max_keyframe_gap_s);
     RPVIO_OPTION_CHOICE(v, homography_planes, kHomographyPlanesNames);
+    RPVIO_OPTION(v, map_all_planes);
     RPVIO_OPTION(v, pixel_sigma);
     RPVIO_OPTION(v, cauchy_scale);
     RPVIO_OPTION(v, imu_noise_inflation);

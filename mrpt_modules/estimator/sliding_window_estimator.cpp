@@ -321,7 +321,15 @@ void SlidingWindowEstimator::dropSecondNewest() {
 }
 
 void SlidingWindowEstimator::flushPlanes() {
-  map_.planesSeen({planes_.observations(features_, cameraLookup(), window_.back()->features.t)});
+  const double t = window_.back()->features.t;
+  PlanesSeen seen{planes_.observations(features_, cameraLookup(), t)};
+  if (options_.map_all_planes) {
+    const auto fitted = planes_.fittedObservations(
+        features_, cameraLookup(), t, camera(window_.back()->id).translation(),
+        options_.verify_planes ? &plane_verifier_.judgedStatic() : nullptr);
+    seen.planes.insert(seen.planes.end(), fitted.begin(), fitted.end());
+  }
+  map_.planesSeen(seen);
 }
 
 void SlidingWindowEstimator::archiveKeyframe(const Frame& frame, const Frame* next) {

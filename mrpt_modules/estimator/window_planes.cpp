@@ -3,6 +3,8 @@
 #include <ceres/sphere_manifold.h>
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <optional>
+#include <utility>
 
 #include "mrpt_modules/factors/marginal_covariance.h"
 
@@ -19,6 +21,33 @@ constexpr double kPlaneSigmaPerPoint = 0.05;
 // is the window's, relative to its oldest pose; between visits the odometry drifts (the simulator's
 // trajectory errors: 0.1 deg, 3 cm), which no visit is trusted beyond.
 constexpr double kVisitDriftNormalDeg = 0.2, kVisitDriftDistance = 0.03;
+
+/// The plane through `points` (least squares; d ≥ 0), when they are planar within
+/// kMaxPlaneRmsPerDepth of their distance to the newest camera.
+std::optional<std::pair<Eigen::Vector3d, double>> fitPlane(
+    const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& newest_camera) {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const auto& p : points) mean += p / points.size();
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (const auto& p : points) cov += (p - mean) * (p - mean).transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+  const double depth = (mean - newest_camera).norm();
+  if (std::sqrt(eig.eigenvalues()(0) / points.size()) > kMaxPlaneRmsPerDepth * depth)
+    return std::nullopt;
+  Eigen::Vector3d n = eig.eigenvectors().col(0);
+  if (n.dot(mean) < 0) n = -n;  // convention: d ≥ 0
+  return std::pair{n, n.dot(mean)};
+}
+
+/// World points of the label's triangulated tracks seen at least 3 times.
+std::vector<Eigen::Vector3d> pointsOfPlane(int plane, const FeatureManager& features,
+                                           const CameraPoseLookup& cameras) {
+  std::vector<Eigen::Vector3d> points;
+  for (const auto& [id, track] : features.tracks())
+    if (track.plane_id == plane && track.triangulated && track.observations.size() >= 3)
+      points.push_back(features.worldPoint(track, cameras));
+  return points;
+}
 
 }  // namespace
 
@@ -60,22 +89,43 @@ void WindowPlanes::initialize(const FeatureManager& features, const CameraPoseLo
       planes_[plane] = newEstimate(known->normal.data(), known->distance);
       continue;
     }
-    std::vector<Eigen::Vector3d> points;
-    for (const auto& [id, track] : features.tracks())
-      if (track.plane_id == plane && track.triangulated && track.observations.size() >= 3)
-        points.push_back(features.worldPoint(track, cameras));
+    const std::vector<Eigen::Vector3d> points = pointsOfPlane(plane, features, cameras);
     if (points.size() < kMinPlanePoints) continue;
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    for (const auto& p : points) mean += p / points.size();
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (const auto& p : points) cov += (p - mean) * (p - mean).transpose();
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-    const double depth = (mean - newest_camera).norm();
-    if (std::sqrt(eig.eigenvalues()(0) / points.size()) > kMaxPlaneRmsPerDepth * depth) continue;
-    Eigen::Vector3d n = eig.eigenvectors().col(0);
-    if (n.dot(mean) < 0) n = -n;  // convention: d ≥ 0
-    planes_[plane] = newEstimate(n.data(), n.dot(mean));
+    if (const auto fit = fitPlane(points, newest_camera))
+      planes_[plane] = newEstimate(fit->first.data(), fit->second);
   }
+}
+
+std::vector<PlaneObservation> WindowPlanes::fittedObservations(const FeatureManager& features,
+                                                               const CameraPoseLookup& cameras,
+                                                               double t,
+                                                               const Eigen::Vector3d& newest_camera,
+                                                               const std::set<int>* eligible) {
+  std::set<int> labels;
+  for (const auto& [id, track] : features.tracks())
+    if (track.plane_id > 0 && !planes_.count(track.plane_id) &&
+        (!eligible || eligible->count(track.plane_id)))
+      labels.insert(track.plane_id);
+  std::vector<PlaneObservation> out;
+  std::map<int, uint64_t> visits;  // the labels fitted now, in the visit they were in or a new one
+  for (int label : labels) {
+    PlaneObservation o;
+    o.points = pointsOfPlane(label, features, cameras);
+    if (o.points.size() < kMinPlanePoints) continue;
+    const auto fit = fitPlane(o.points, newest_camera);
+    if (!fit) continue;
+    o.mask_id = label;
+    o.normal = fit->first;
+    o.distance = fit->second;
+    o.covariance = Eigen::Matrix4d::Identity() * kPlaneSigmaPerPoint * kPlaneSigmaPerPoint /
+                   static_cast<double>(o.points.size());
+    o.time = t;
+    const auto stay = fitted_visits_.find(label);
+    o.visit = visits[label] = stay != fitted_visits_.end() ? stay->second : ++visits_;
+    out.push_back(std::move(o));
+  }
+  fitted_visits_ = std::move(visits);
+  return out;
 }
 
 std::set<int> WindowPlanes::constrained(const FeatureManager& features) const {

@@ -51,6 +51,13 @@ class WindowPlanes {
   /// Each plane with at least kMinPlanePoints triangulated points, for the map (stamped t).
   std::vector<PlaneObservation> observations(const FeatureManager& features,
                                              const CameraPoseLookup& cameras, double t) const;
+  /// For the map only, the planes without parameters in the window (among `eligible` if given):
+  /// a fit of each one's triangulated features as `initialize` makes, with its covariance for
+  /// the number of points. A label's observations while it stays in the window are one visit.
+  std::vector<PlaneObservation> fittedObservations(const FeatureManager& features,
+                                                   const CameraPoseLookup& cameras, double t,
+                                                   const Eigen::Vector3d& newest_camera,
+                                                   const std::set<int>* eligible);
   /// The chosen planes' covariances of (n, d) from the solved `problem` (the window's marginal
   /// covariance on the sphere, moved to ambient (n, d), plus the drift between visits); a plane
   /// keeps its last one when the problem cannot give it.
@@ -58,6 +65,7 @@ class WindowPlanes {
   void clear() {
     planes_.clear();
     used_.clear();
+    fitted_visits_.clear();
   }
 
  private:
@@ -66,7 +74,8 @@ class WindowPlanes {
   HomographyPlanes which_;
   PlaneEstimates planes_;
   std::set<int> used_;   // labels whose features get homography factors
-  uint64_t visits_ = 0;  // planes that entered the window so far
+  uint64_t visits_ = 0;  // planes that entered the window so far (estimated or fitted)
+  std::map<int, uint64_t> fitted_visits_;  // label → visit, of the last fittedObservations
 };
 
 }  // namespace rpvio
