@@ -4,7 +4,7 @@
 set -eu
 
 PACKAGES="cmake g++ make pkg-config libmrpt-dev mrpt-apps libceres-dev libopencv-dev \
-liboctomap-dev libeigen3-dev libdeflate-dev libgtest-dev libgmock-dev libbenchmark-dev \
+liboctomap-dev libeigen3-dev libdeflate-dev libgoogle-perftools-dev libgtest-dev libgmock-dev libbenchmark-dev \
 librosbag-storage-dev libsensor-msgs-dev libnav-msgs-dev libroscpp-core-dev $*"
 
 missing=""
