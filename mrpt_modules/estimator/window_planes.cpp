@@ -22,6 +22,12 @@ constexpr double kPlaneSigmaPerPoint = 0.05;
 // trajectory errors: 0.1 deg, 3 cm), which no visit is trusted beyond.
 constexpr double kVisitDriftNormalDeg = 0.2, kVisitDriftDistance = 0.03;
 
+/// Covariance of (n, d) of a plane not yet solved in the window, fitted to `points` points.
+Eigen::Matrix4d unsolvedCovariance(size_t points) {
+  return Eigen::Matrix4d::Identity() * kPlaneSigmaPerPoint * kPlaneSigmaPerPoint /
+         static_cast<double>(points);
+}
+
 /// The plane through `points` (least squares; d ≥ 0), when they are planar within
 /// kMaxPlaneRmsPerDepth of their distance to the newest camera.
 std::optional<std::pair<Eigen::Vector3d, double>> fitPlane(
@@ -117,8 +123,7 @@ std::vector<PlaneObservation> WindowPlanes::fittedObservations(const FeatureMana
     o.mask_id = label;
     o.normal = fit->first;
     o.distance = fit->second;
-    o.covariance = Eigen::Matrix4d::Identity() * kPlaneSigmaPerPoint * kPlaneSigmaPerPoint /
-                   static_cast<double>(o.points.size());
+    o.covariance = unsolvedCovariance(o.points.size());
     o.time = t;
     const auto stay = fitted_visits_.find(label);
     o.visit = visits[label] = stay != fitted_visits_.end() ? stay->second : ++visits_;
@@ -164,9 +169,7 @@ std::vector<PlaneObservation> WindowPlanes::observations(const FeatureManager& f
       if (track.plane_id == mask && track.triangulated)
         o.points.push_back(features.worldPoint(track, cameras));
     if (o.points.size() < kMinPlanePoints) continue;
-    o.covariance =
-        estimate.covariance.value_or(Eigen::Matrix4d::Identity() * kPlaneSigmaPerPoint *
-                                     kPlaneSigmaPerPoint / static_cast<double>(o.points.size()));
+    o.covariance = estimate.covariance.value_or(unsolvedCovariance(o.points.size()));
     o.time = t;
     o.visit = estimate.visit;
     out.push_back(std::move(o));

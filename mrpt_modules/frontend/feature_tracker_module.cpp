@@ -31,9 +31,11 @@ void FeatureTrackerModule::initialize(const IniFile& config, const std::string& 
     worker_ = std::make_unique<SerialWorker>();
   }
   bus_ = &context.bus;
-  context.bus.subscribeSensor(labels::kCamera, [this](const auto& m) { onImage(m); });
+  context.bus.subscribeSensor(labels::kCamera,
+                              [this](const auto& m) { onImageFile(pending_images_, m); });
   if (use_masks_)
-    context.bus.subscribeSensor(labels::kPlaneMask, [this](const auto& m) { onMask(m); });
+    context.bus.subscribeSensor(labels::kPlaneMask,
+                                [this](const auto& m) { onImageFile(pending_masks_, m); });
   if (options.predict_rotation) {
     R_BC_ = context.calibration.T_BC.linear();
     time_offset_ = context.calibration.time_offset;
@@ -45,16 +47,10 @@ void FeatureTrackerModule::initialize(const IniFile& config, const std::string& 
   setOptionsText("[" + section + "]\n" + options.describe());
 }
 
-void FeatureTrackerModule::onImage(const ObservationMessage& m) {
+void FeatureTrackerModule::onImageFile(std::map<double, ImageFileRef>& pending,
+                                       const ObservationMessage& m) {
   const double t = toSeconds(m.observation->timestamp);
-  pending_images_[t] =
-      locateImage(dynamic_cast<const mrpt::obs::CObservationImage&>(*m.observation), *m.reader);
-  process(t);
-}
-
-void FeatureTrackerModule::onMask(const ObservationMessage& m) {
-  const double t = toSeconds(m.observation->timestamp);
-  pending_masks_[t] =
+  pending[t] =
       locateImage(dynamic_cast<const mrpt::obs::CObservationImage&>(*m.observation), *m.reader);
   process(t);
 }

@@ -33,8 +33,8 @@ class FeatureTrackerModule : public Module {
   void finish() override;
 
  private:
-  void onImage(const ObservationMessage& message);
-  void onMask(const ObservationMessage& message);
+  /// Keeps where an image's (or a mask's) pixels are, by time, until its pair is complete.
+  void onImageFile(std::map<double, ImageFileRef>& pending, const ObservationMessage& message);
   void onImu(const ObservationMessage& message);
   void process(double t);
   /// A tracked frame, what the tracker warned of on it, and the time its files took to decode.
@@ -64,7 +64,7 @@ class FeatureTrackerModule : public Module {
   bool use_masks_ = true;
   std::map<double, ImageFileRef> pending_images_, pending_masks_;
   double unpublished_load_ms_ = 0;  // decoding of tracked frames not published, for the next
-  size_t frames_in_flight_ = 0;     // 0: not pipelined
+  size_t frames_in_flight_ = 0;     // with worker_: frames tracked ahead of the bus
   std::deque<InFlight> in_flight_;
   std::unique_ptr<SerialWorker> worker_;  // after tracker_: its tasks use it until joined
   // Rotation prediction: the gyroscope since the previous image, the camera mount's rotation and
