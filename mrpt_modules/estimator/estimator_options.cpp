@@ -15,6 +15,8 @@ void EstimatorOptions::validate(const OptionsLoader& loader) const {
   loader.require(init_fallback_parallax_px > 0 && init_fallback_parallax_px <= init_parallax_px,
                  "init_fallback_parallax_px", "must be positive and at most init_parallax_px");
   loader.require(camera_height_sigma >= 0, "camera_height_sigma", "must be 0 (off) or positive");
+  loader.require(accel_bias_prior_sigma >= 0, "accel_bias_prior_sigma",
+                 "must be 0 (off) or positive");
   loader.require(init_window_frames >= 2, "init_window_frames", "must be 2 or more");
   loader.require(discover_confirm_after >= 1, "discover_confirm_after", "must be 1 or more");
   loader.require(discover_reject_after >= 1, "discover_reject_after", "must be 1 or more");

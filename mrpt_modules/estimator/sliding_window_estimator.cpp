@@ -7,6 +7,7 @@
 
 #include "mrpt_modules/estimator/batch_refinement.h"
 #include "mrpt_modules/estimator/estimator_problem.h"
+#include "mrpt_modules/factors/accel_bias_prior_factor.h"
 #include "mrpt_modules/factors/camera_height_factor.h"
 #include "mrpt_modules/factors/homography_factor.h"
 #include "mrpt_modules/factors/imu_factor.h"
@@ -116,6 +117,8 @@ void SlidingWindowEstimator::optimize(WindowSolve solve) {
       (!motion_only || std::any_of(prior_->blocks.begin(), prior_->blocks.end(),
                                    [&](double* b) { return problem.HasParameterBlock(b); })))
     problem.AddResidualBlock(new MarginalizationFactor(prior_), nullptr, prior_->blocks);
+  if (accel_bias_prior_ && !motion_only)
+    problem.AddResidualBlock(accelBiasPriorFactor(), nullptr, window_.front()->speed_bias);
   ground_ = chooseGround(planes_with_factors);
   report_.ground_plane = ground_ ? ground_->plane : -1;
   if (ground_) {
@@ -181,6 +184,10 @@ std::optional<GroundInWindow> SlidingWindowEstimator::chooseGround(
   const Eigen::Vector3d newest_camera = camera(window_.back()->id).translation();
   return groundInWindow(planes_.estimates(), planes, newest_camera, calib_.camera_height,
                         options_.initializerOptions().max_ground_tilt_deg);
+}
+
+ceres::CostFunction* SlidingWindowEstimator::accelBiasPriorFactor() const {
+  return new AccelBiasPriorResidual(*accel_bias_prior_, options_.accel_bias_prior_sigma);
 }
 
 ceres::CostFunction* SlidingWindowEstimator::cameraHeightFactor() const {
@@ -264,6 +271,11 @@ void SlidingWindowEstimator::marginalizeOldest() {
             loss, {oldest.pose, pose_of[o.frame], mount_, plane->normal, plane->distance});
     }
     remove.insert(track.inv_depth);
+  }
+  if (accel_bias_prior_) {
+    marginalizer.addFactor(std::unique_ptr<ceres::CostFunction>(accelBiasPriorFactor()), nullptr,
+                           {oldest.speed_bias});
+    accel_bias_prior_.reset();
   }
   // The oldest keyframe's height above the ground stays in the prior with the ground plane.
   if (ground_) {
@@ -406,6 +418,9 @@ void SlidingWindowEstimator::startWindow(const InitializedWindow& init) {
     track.triangulated = true;
   }
   planes_.start(init.planes);
+  accel_bias_prior_.reset();
+  if (options_.accel_bias_prior_sigma > 0)
+    accel_bias_prior_ = Eigen::Vector3d(window_.front()->speed_bias + 3);
   // Re-initialized soon enough after a reset: into the old world; else a new world, and the
   // archived keyframes are in another one.
   if (const auto shift =
@@ -455,6 +470,7 @@ void SlidingWindowEstimator::reset(const std::string& cause,
   window_.clear();
   features_.clear();
   prior_.reset();
+  accel_bias_prior_.reset();
   planes_.clear();
   ground_.reset();
   bootstrapper_.restart(imu_since_good, status_);

@@ -141,6 +141,7 @@ class SlidingWindowEstimator {
   std::optional<GroundInWindow> chooseGround(const std::set<int>& planes) const;
   /// A keyframe's camera-height factor on ground_ (camera_height_factor.h).
   ceres::CostFunction* cameraHeightFactor() const;
+  ceres::CostFunction* accelBiasPriorFactor() const;
   void rejectDepthOutliers();
   std::string failure(const double* predicted_pose) const;
   void marginalizeOldest();
@@ -169,6 +170,9 @@ class SlidingWindowEstimator {
   uint64_t next_frame_id_ = 0;
   FeatureManager features_;
   std::shared_ptr<const MarginalizationPrior> prior_;
+  // The accelerometer-bias prior of the first window, on its oldest keyframe until that keyframe
+  // is marginalized (then it is in prior_).
+  std::optional<Eigen::Vector3d> accel_bias_prior_;
   bool keyframe_work_deferred_ = false;  // the planes' covariances and the oldest keyframe's
                                          // marginalization, left to the next frame
   WindowPlanes planes_;
