@@ -73,7 +73,7 @@ struct EstimatorOptions {
   double camera_height_sigma = 0.05;
   // The standard deviation (m/s²; 0: none) of a prior on the first keyframe's accelerometer bias
   // at the initializer's estimate (accel_bias_prior_factor.h).
-  double accel_bias_prior_sigma = 0.1;
+  double accel_bias_prior_sigma = 0.3;
   // The alignment's scale standard deviation relative to the scale (from its residual) may be at
   // most this: above it the window's accelerations do not make the scale observable. As after a
   // reset, the window refines the scale: the paper suite starts as with 0.03 (its take-off push

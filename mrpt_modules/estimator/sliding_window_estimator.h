@@ -141,6 +141,7 @@ class SlidingWindowEstimator {
   std::optional<GroundInWindow> chooseGround(const std::set<int>& planes) const;
   /// A keyframe's camera-height factor on ground_ (camera_height_factor.h).
   ceres::CostFunction* cameraHeightFactor() const;
+  /// The first keyframe's accelerometer-bias prior (accel_bias_prior_factor.h).
   ceres::CostFunction* accelBiasPriorFactor() const;
   void rejectDepthOutliers();
   std::string failure(const double* predicted_pose) const;
