@@ -418,7 +418,6 @@ void SlidingWindowEstimator::startWindow(const InitializedWindow& init) {
     track.triangulated = true;
   }
   planes_.start(init.planes);
-  accel_bias_prior_.reset();
   if (options_.accel_bias_prior_sigma > 0)
     accel_bias_prior_ = Eigen::Vector3d(window_.front()->speed_bias + 3);
   // Re-initialized soon enough after a reset: into the old world; else a new world, and the
