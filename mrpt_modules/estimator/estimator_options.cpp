@@ -5,6 +5,7 @@ namespace rpvio {
 void EstimatorOptions::validate(const OptionsLoader& loader) const {
   loader.require(window_size >= 3, "window_size", "must be at least 3");
   loader.require(max_iterations >= 0, "max_iterations", "must be 0 or more");
+  loader.require(plane_covariance_every >= 1, "plane_covariance_every", "must be 1 or more");
   loader.require(verify_static_px < verify_moving_px, "verify_moving_px",
                  "must be more than verify_static_px");
   loader.require(verify_reject_after >= 1, "verify_reject_after", "must be 1 or more");

@@ -49,6 +49,12 @@ struct EstimatorOptions {
   // covariances and the oldest keyframe's marginalization to the start of the next frame, so
   // that no frame pays for a long solve and both. max_iterations or more: never.
   int max_iterations_before_deferring = 2;
+  // The planes' covariances (what the planes map weighs a visit by) are computed on every
+  // plane_covariance_every-th keyframe that marginalizes, and at the end of the run; the map gets
+  // the last ones in between. With defer_plane_covariances, they and the marginalization are left
+  // to the start of the next frame, off the keyframe's.
+  int plane_covariance_every = 3;
+  bool defer_plane_covariances = true;
   double min_triangulation_angle_deg = 1.0;
   // Failure detection.
   double max_accel_bias = 2.5;  // m/s²
@@ -167,6 +173,8 @@ struct EstimatorOptions {
     RPVIO_OPTION(v, motion_only_between_keyframes);
     RPVIO_OPTION(v, max_solver_time_s);
     RPVIO_OPTION(v, max_iterations_before_deferring);
+    RPVIO_OPTION(v, plane_covariance_every);
+    RPVIO_OPTION(v, defer_plane_covariances);
     RPVIO_OPTION(v, min_triangulation_angle_deg);
     RPVIO_OPTION(v, max_accel_bias);
     RPVIO_OPTION(v, max_gyro_bias);

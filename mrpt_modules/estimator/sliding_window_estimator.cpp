@@ -163,19 +163,22 @@ void SlidingWindowEstimator::optimize(WindowSolve solve) {
     ceres::Solver::Summary summary;
     ceres::Solve(solver, &problem, &summary);
     if (solve != WindowSolve::kWindowAndPlaneCovariances) return;
-    // A long solve leaves the covariances and the marginalization that follow it to the next
-    // frame (summary.iterations counts the starting point too).
+    // A long solve, or one whose planes' covariances are due (defer_plane_covariances), leaves
+    // the covariances and the marginalization that follow it to the next frame
+    // (summary.iterations counts the starting point too).
     const int iterations = static_cast<int>(summary.iterations.size()) - 1;
-    if (iterations > options_.max_iterations_before_deferring) {
-      keyframe_work_deferred_ = true;
-      return;
-    }
+    keyframe_work_deferred_ = iterations > options_.max_iterations_before_deferring ||
+                              (covariances_due_ && options_.defer_plane_covariances);
+    if (keyframe_work_deferred_ || !covariances_due_) return;
   }
   // The covariances count the held planes' uncertainty (what the prior knows of them): held, they
   // would be taken as exact and the others' sigmas shrink (a wall's offset 0.16 -> 0.05 m, for an
   // error of 0.17 m, EstimatorOnSimulator.PlaneMapCovariancesAreConsistent).
   for (double* block : held_planes) problem.SetParameterBlockVariable(block);
   planes_.updateCovariances(problem, planes_with_factors);
+  covariances_due_ = false;
+  keyframes_since_covariances_ = 0;
+  ++covariance_updates_;
 }
 
 std::optional<GroundInWindow> SlidingWindowEstimator::chooseGround(
@@ -361,7 +364,7 @@ void SlidingWindowEstimator::archiveKeyframe(const Frame& frame, const Frame* ne
 bool SlidingWindowEstimator::finishKeyframeWork() {
   if (!keyframe_work_deferred_) return false;
   keyframe_work_deferred_ = false;
-  optimize(WindowSolve::kPlaneCovariances);
+  if (covariances_due_) optimize(WindowSolve::kPlaneCovariances);
   marginalizeOldest();
   return true;
 }
@@ -369,6 +372,8 @@ bool SlidingWindowEstimator::finishKeyframeWork() {
 void SlidingWindowEstimator::finishMap() {
   finishKeyframeWork();
   if (initialized_) {
+    // The last visit of each plane is handed over with covariances of the final window.
+    if (keyframes_since_covariances_ > 0) optimize(WindowSolve::kPlaneCovariances);
     flushPlanes();
     for (size_t k = 0; k < window_.size(); ++k) {
       const bool linked =
@@ -465,7 +470,9 @@ void SlidingWindowEstimator::reset(const std::string& cause,
   report_.state = "reset";
   initialized_ = false;
   keyframe_work_deferred_ = false;  // the window it was for is dropped
-  map_.chainBroken();               // the window's frames, the link's other end, are dropped
+  covariances_due_ = false;
+  keyframes_since_covariances_ = 0;
+  map_.chainBroken();  // the window's frames, the link's other end, are dropped
   window_.clear();
   features_.clear();
   prior_.reset();
@@ -572,9 +579,11 @@ std::optional<StateEstimate> SlidingWindowEstimator::addFrame(
   planes_.initialize(features_, cameraLookup(), camera(window_.back()->id).translation(),
                      map_.planesMap());
   // The planes go to the map after the oldest frame's marginalization.
-  if (keyframe && window_.size() > options_.window_size + 1)
+  if (keyframe && window_.size() > options_.window_size + 1) {
+    covariances_due_ = options_.homography_planes != HomographyPlanes::kNone &&
+                       ++keyframes_since_covariances_ >= options_.plane_covariance_every;
     optimize(WindowSolve::kWindowAndPlaneCovariances);
-  else if (keyframe || !options_.motion_only_between_keyframes)
+  } else if (keyframe || !options_.motion_only_between_keyframes)
     optimize(WindowSolve::kWindow);
   else
     optimize(WindowSolve::kNewestFrames);

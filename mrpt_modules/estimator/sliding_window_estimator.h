@@ -14,9 +14,11 @@
 // and the marginalization prior. Each frame is optimized (Dogleg, DENSE_SCHUR); then the oldest
 // keyframe is marginalized when the second newest frame is a keyframe (parallax or few common
 // tracks), else the second newest is dropped (its IMU merged into the newest, its visual
-// measurements discarded). A keyframe whose solve took more than max_iterations_before_deferring
-// iterations leaves its planes' covariances and the marginalization to the start of the next
-// frame, so that no frame pays for a long solve and both. With motion_only_between_keyframes, a
+// measurements discarded). The planes' covariances are computed on every
+// plane_covariance_every-th keyframe. A keyframe whose solve took more than
+// max_iterations_before_deferring iterations, or whose covariances are due (with
+// defer_plane_covariances), leaves them and the marginalization to the start of the next frame,
+// so that no frame pays for a whole-window solve and both. With motion_only_between_keyframes, a
 // frame whose second newest is not a keyframe solves only the two newest frames against the rest
 // of the window held.
 //
@@ -74,6 +76,8 @@ class SlidingWindowEstimator {
   /// The status with its figures (e.g. "too little parallax (12.3 px)"): for the log.
   const std::string& statusDetail() const { return status_detail_; }
   const FrameReport& lastReport() const { return report_; }
+  /// How many times the planes' covariances were computed (plane_covariance_every).
+  size_t covarianceUpdates() const { return covariance_updates_; }
   const PlaneEstimates& planes() const { return planes_.estimates(); }
   /// t_imu = t_frame + timeOffset(): the calibration's offset plus the estimated correction.
   double timeOffset() const { return bootstrapper_.timeOffset(); }
@@ -130,8 +134,9 @@ class SlidingWindowEstimator {
   CameraPoseLookup cameraLookup() const;
   enum class WindowSolve {
     kWindow,
-    kWindowAndPlaneCovariances,  // then the covariance of every plane with factors (what the
-                                 // planes map weighs a visit by)
+    kWindowAndPlaneCovariances,  // a keyframe's, before the marginalization: then, if due,
+                                 // the covariance of every plane with factors (what the planes
+                                 // map weighs a visit by)
     kNewestFrames,               // the two newest frames against the rest held (motion only)
     kPlaneCovariances,           // no solve: the covariances only, at the window's state
   };
@@ -174,8 +179,11 @@ class SlidingWindowEstimator {
   // The accelerometer-bias prior of the first window, on its oldest keyframe until that keyframe
   // is marginalized (then it is in prior_).
   std::optional<Eigen::Vector3d> accel_bias_prior_;
-  bool keyframe_work_deferred_ = false;  // the planes' covariances and the oldest keyframe's
-                                         // marginalization, left to the next frame
+  bool keyframe_work_deferred_ = false;  // the planes' covariances (if due) and the oldest
+                                         // keyframe's marginalization, left to the next frame
+  bool covariances_due_ = false;         // on this keyframe (plane_covariance_every)
+  int keyframes_since_covariances_ = 0;  // marginalizing keyframes since they were computed
+  size_t covariance_updates_ = 0;
   WindowPlanes planes_;
   std::optional<GroundInWindow> ground_;  // of the last solve, when camera-height factors held it
   PlaneVerifier plane_verifier_;
