@@ -46,13 +46,14 @@ struct EstimatorOptions {
   bool motion_only_between_keyframes = true;
   double max_solver_time_s = 0;  // 0: no time budget (a budget makes runs machine-dependent)
   // A keyframe's whole-window solve that takes more iterations than this leaves the planes'
-  // covariances and the oldest keyframe's marginalization to the start of the next frame, so
-  // that no frame pays for a long solve and both. max_iterations or more: never.
+  // covariances (if due) and the oldest keyframe's marginalization to the start of the next
+  // frame, so that no frame pays for a long solve and both. max_iterations or more: never.
   int max_iterations_before_deferring = 2;
   // The planes' covariances (what the planes map weighs a visit by) are computed on every
-  // plane_covariance_every-th keyframe that marginalizes, and at the end of the run; the map gets
-  // the last ones in between. With defer_plane_covariances, they and the marginalization are left
-  // to the start of the next frame, off the keyframe's.
+  // plane_covariance_every-th keyframe that marginalizes (the next one if they could not be),
+  // and at the end of the run; the map gets the last ones in between. With
+  // defer_plane_covariances, they and the marginalization are left to the start of the next
+  // frame, off the keyframe's.
   int plane_covariance_every = 3;
   bool defer_plane_covariances = true;
   double min_triangulation_angle_deg = 1.0;

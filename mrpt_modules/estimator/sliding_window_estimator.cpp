@@ -164,18 +164,20 @@ void SlidingWindowEstimator::optimize(WindowSolve solve) {
     ceres::Solve(solver, &problem, &summary);
     if (solve != WindowSolve::kWindowAndPlaneCovariances) return;
     // A long solve, or one whose planes' covariances are due (defer_plane_covariances), leaves
-    // the covariances and the marginalization that follow it to the next frame
+    // the covariances (if due) and the marginalization that follow it to the next frame
     // (summary.iterations counts the starting point too).
     const int iterations = static_cast<int>(summary.iterations.size()) - 1;
+    const bool covariances_to_compute = covariances_due_ && !planes_with_factors.empty();
     keyframe_work_deferred_ = iterations > options_.max_iterations_before_deferring ||
-                              (covariances_due_ && options_.defer_plane_covariances);
-    if (keyframe_work_deferred_ || !covariances_due_) return;
+                              (covariances_to_compute && options_.defer_plane_covariances);
+    if (keyframe_work_deferred_ || !covariances_to_compute) return;
   }
   // The covariances count the held planes' uncertainty (what the prior knows of them): held, they
   // would be taken as exact and the others' sigmas shrink (a wall's offset 0.16 -> 0.05 m, for an
   // error of 0.17 m, EstimatorOnSimulator.PlaneMapCovariancesAreConsistent).
   for (double* block : held_planes) problem.SetParameterBlockVariable(block);
-  planes_.updateCovariances(problem, planes_with_factors);
+  // Not computed (no plane with factors, or not evaluable): due again on the next keyframe.
+  if (!planes_.updateCovariances(problem, planes_with_factors)) return;
   covariances_due_ = false;
   keyframes_since_covariances_ = 0;
   ++covariance_updates_;

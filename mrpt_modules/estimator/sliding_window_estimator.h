@@ -15,12 +15,12 @@
 // keyframe is marginalized when the second newest frame is a keyframe (parallax or few common
 // tracks), else the second newest is dropped (its IMU merged into the newest, its visual
 // measurements discarded). The planes' covariances are computed on every
-// plane_covariance_every-th keyframe. A keyframe whose solve took more than
+// plane_covariance_every-th keyframe that marginalizes. A keyframe whose solve took more than
 // max_iterations_before_deferring iterations, or whose covariances are due (with
-// defer_plane_covariances), leaves them and the marginalization to the start of the next frame,
-// so that no frame pays for a whole-window solve and both. With motion_only_between_keyframes, a
-// frame whose second newest is not a keyframe solves only the two newest frames against the rest
-// of the window held.
+// defer_plane_covariances), leaves its covariances (if due) and the marginalization to the start
+// of the next frame, so that no frame pays for a whole-window solve and both. With
+// motion_only_between_keyframes, a frame whose second newest is not a keyframe solves only the two
+// newest frames against the rest of the window held.
 //
 // Modes: every tracked feature (the front-end restricts them to the plane masks or not) has
 // reprojection factors; homography factors on no plane (vins-mono, mask-vins), the largest plane

@@ -177,15 +177,15 @@ std::vector<PlaneObservation> WindowPlanes::observations(const FeatureManager& f
   return out;
 }
 
-void WindowPlanes::updateCovariances(ceres::Problem& problem, const std::set<int>& planes) {
+bool WindowPlanes::updateCovariances(ceres::Problem& problem, const std::set<int>& planes) {
   std::vector<double*> blocks;
   for (int mask : planes) {
     blocks.push_back(planes_.at(mask).normal);
     blocks.push_back(planes_.at(mask).distance);
   }
-  if (blocks.empty()) return;
+  if (blocks.empty()) return false;
   const auto covariance = marginalCovariance(problem, blocks);
-  if (!covariance) return;  // not evaluable: the planes keep their last covariance
+  if (!covariance) return false;  // not evaluable: the planes keep their last covariance
   const double drift_normal = kVisitDriftNormalDeg * M_PI / 180;
   int offset = 0;
   for (int mask : planes) {
@@ -204,6 +204,7 @@ void WindowPlanes::updateCovariances(ceres::Problem& problem, const std::set<int
     e.covariance = C;
     offset += 3;
   }
+  return true;
 }
 
 }  // namespace rpvio

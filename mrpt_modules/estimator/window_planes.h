@@ -60,8 +60,8 @@ class WindowPlanes {
                                                    const std::set<int>* eligible);
   /// The chosen planes' covariances of (n, d) from the solved `problem` (the window's marginal
   /// covariance on the sphere, moved to ambient (n, d), plus the drift between visits); a plane
-  /// keeps its last one when the problem cannot give it.
-  void updateCovariances(ceres::Problem& problem, const std::set<int>& planes);
+  /// keeps its last one when the problem cannot give it (then false, as with no plane).
+  bool updateCovariances(ceres::Problem& problem, const std::set<int>& planes);
   void clear() {
     planes_.clear();
     used_.clear();
