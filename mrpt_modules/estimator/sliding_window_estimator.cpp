@@ -167,7 +167,7 @@ void SlidingWindowEstimator::optimize(WindowSolve solve) {
     // the covariances (if due) and the marginalization that follow it to the next frame
     // (summary.iterations counts the starting point too).
     const int iterations = static_cast<int>(summary.iterations.size()) - 1;
-    const bool covariances_to_compute = covariances_due_ && !planes_with_factors.empty();
+    const bool covariances_to_compute = covariancesDue() && !planes_with_factors.empty();
     keyframe_work_deferred_ = iterations > options_.max_iterations_before_deferring ||
                               (covariances_to_compute && options_.defer_plane_covariances);
     if (keyframe_work_deferred_ || !covariances_to_compute) return;
@@ -178,7 +178,6 @@ void SlidingWindowEstimator::optimize(WindowSolve solve) {
   for (double* block : held_planes) problem.SetParameterBlockVariable(block);
   // Not computed (no plane with factors, or not evaluable): due again on the next keyframe.
   if (!planes_.updateCovariances(problem, planes_with_factors)) return;
-  covariances_due_ = false;
   keyframes_since_covariances_ = 0;
   ++covariance_updates_;
 }
@@ -366,7 +365,7 @@ void SlidingWindowEstimator::archiveKeyframe(const Frame& frame, const Frame* ne
 bool SlidingWindowEstimator::finishKeyframeWork() {
   if (!keyframe_work_deferred_) return false;
   keyframe_work_deferred_ = false;
-  if (covariances_due_) optimize(WindowSolve::kPlaneCovariances);
+  if (covariancesDue()) optimize(WindowSolve::kPlaneCovariances);
   marginalizeOldest();
   return true;
 }
@@ -472,7 +471,6 @@ void SlidingWindowEstimator::reset(const std::string& cause,
   report_.state = "reset";
   initialized_ = false;
   keyframe_work_deferred_ = false;  // the window it was for is dropped
-  covariances_due_ = false;
   keyframes_since_covariances_ = 0;
   map_.chainBroken();  // the window's frames, the link's other end, are dropped
   window_.clear();
@@ -582,8 +580,7 @@ std::optional<StateEstimate> SlidingWindowEstimator::addFrame(
                      map_.planesMap());
   // The planes go to the map after the oldest frame's marginalization.
   if (keyframe && window_.size() > options_.window_size + 1) {
-    covariances_due_ = options_.homography_planes != HomographyPlanes::kNone &&
-                       ++keyframes_since_covariances_ >= options_.plane_covariance_every;
+    if (options_.homography_planes != HomographyPlanes::kNone) ++keyframes_since_covariances_;
     optimize(WindowSolve::kWindowAndPlaneCovariances);
   } else if (keyframe || !options_.motion_only_between_keyframes)
     optimize(WindowSolve::kWindow);

@@ -151,6 +151,10 @@ class SlidingWindowEstimator {
   void rejectDepthOutliers();
   std::string failure(const double* predicted_pose) const;
   void marginalizeOldest();
+  /// Whether this keyframe computes the planes' covariances (plane_covariance_every).
+  bool covariancesDue() const {
+    return keyframes_since_covariances_ >= options_.plane_covariance_every;
+  }
   /// The covariances and marginalization a long keyframe solve left, if any (then true).
   bool finishKeyframeWork();
   /// A keyframe leaving the window to the map, with its IMU link to the next one.
@@ -181,8 +185,9 @@ class SlidingWindowEstimator {
   std::optional<Eigen::Vector3d> accel_bias_prior_;
   bool keyframe_work_deferred_ = false;  // the planes' covariances (if due) and the oldest
                                          // keyframe's marginalization, left to the next frame
-  bool covariances_due_ = false;         // on this keyframe (plane_covariance_every)
-  int keyframes_since_covariances_ = 0;  // marginalizing keyframes since they were computed
+  // Marginalizing keyframes since the planes' covariances were computed (none counted without
+  // homography factors).
+  int keyframes_since_covariances_ = 0;
   size_t covariance_updates_ = 0;
   WindowPlanes planes_;
   std::optional<GroundInWindow> ground_;  // of the last solve, when camera-height factors held it
