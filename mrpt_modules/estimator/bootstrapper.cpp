@@ -44,9 +44,11 @@ std::optional<InitializedWindow> Bootstrapper::addFrame(
   if (frame.features.empty()) buffer_.clear();  // no structure can span a blank frame
   buffer_.emplace_back(frame, imu_since_previous);
   // The newest init_window_frames frames, or more when they span less than init_window_s (a
-  // camera faster than 20 Hz).
-  if (buffer_.size() > options_.init_window_frames &&
-      buffer_.back().first.t - buffer_[1].first.t >= options_.init_window_s - 1e-6)
+  // camera faster than 20 Hz); time_offset_window_s while a time offset waits for that window.
+  const double keep_s =
+      awaiting_time_offset_window_ ? options_.time_offset_window_s : options_.init_window_s;
+  if ((awaiting_time_offset_window_ || buffer_.size() > options_.init_window_frames) &&
+      buffer_.back().first.t - buffer_[1].first.t >= keep_s - 1e-6)
     buffer_.pop_front();
   // Before the first initialization, an attempt that failed as far as the geometry or the
   // alignment (0.1–0.9 s of structure from motion and bundle adjustment) is not repeated before
@@ -106,9 +108,21 @@ std::optional<InitializedWindow> Bootstrapper::tryInitialize() {
   }
   if (!init.ok()) return std::nullopt;
   if (options_.estimate_time_offset && !time_offset_estimated_) {
+    const TimeOffsetDecision decision = decideTimeOffset(init);
+    if (decision.undecided) {
+      // Not initialized yet: the window grows to time_offset_window_s, whose longer span of
+      // changing angular rate decides (docs/notes/2026-11-28-time-offset-guard.md).
+      awaiting_time_offset_window_ = true;
+      time_offset_estimated_ = false;
+      next_attempt_t_ = buffer_.front().first.t + options_.time_offset_window_s;
+      status_ = "time offset undecided";
+      status_detail_ = time_offset_note_;
+      return std::nullopt;
+    }
+    awaiting_time_offset_window_ = false;
     // A significant camera-IMU offset: the same window again, on the corrected frame times; kept
     // only if it initializes there.
-    if (const double td = significantTimeOffset(init); td != 0) {
+    if (const double td = decision.td; td != 0) {
       const auto original = buffer_;
       const double original_offset = time_offset_;
       moveBuffer(td);
@@ -209,7 +223,7 @@ std::optional<WorldShift> Bootstrapper::reconnect(double t, const double* pose) 
   return s;
 }
 
-double Bootstrapper::significantTimeOffset(const InitializationResult& init) {
+Bootstrapper::TimeOffsetDecision Bootstrapper::decideTimeOffset(const InitializationResult& init) {
   time_offset_estimated_ = true;
   std::vector<double> t;
   std::vector<Eigen::Matrix3d> R;
@@ -220,20 +234,34 @@ double Bootstrapper::significantTimeOffset(const InitializationResult& init) {
   std::string why;
   const auto e =
       estimateTimeOffset(t, R, bufferSamples(), init.bg, options_.max_time_offset_s, &why);
+  const std::string earlier = time_offset_note_.empty() ? "" : time_offset_note_ + "; then ";
   if (!e) {
-    time_offset_note_ = "time offset not estimated: " + why;
-    return 0;
+    time_offset_note_ = earlier + "time offset not estimated: " + why;
+    return {};
   }
-  const bool significant =
+  // Significant: not noise (3 sigma) and more than the margin times what the residual could fake
+  // (systematic). Noise-significant but not beyond the systematic bound: undecided while the
+  // window is shorter than time_offset_window_s.
+  const bool noise_significant =
       std::abs(e->td) >= options_.min_time_offset_s && std::abs(e->td) > 3 * e->sigma;
-  char text[200];
+  const bool beyond_systematic =
+      std::abs(e->td) > options_.time_offset_systematic_margin * e->systematic;
+  const double span = t.back() - t.front();
+  TimeOffsetDecision decision;
+  decision.undecided =
+      noise_significant && !beyond_systematic && span < options_.time_offset_window_s - 1e-6;
+  if (noise_significant && beyond_systematic) decision.td = e->td;
+  char text[320];
   std::snprintf(text, sizeof text,
-                "time offset %+.1f ms (sigma %.1f ms, %zu frames, fit %.4f deg, residual "
-                "correlation %.2f)%s",
-                1e3 * e->td, 1e3 * e->sigma, e->frames, e->rms_deg, e->residual_correlation,
-                significant ? "" : ": not applied");
-  time_offset_note_ = text;
-  return significant ? e->td : 0;
+                "time offset %+.1f ms (sigma %.1f ms, systematic %.1f ms, %zu frames over %.1f s, "
+                "fit %.4f deg, residual correlation %.2f)%s",
+                1e3 * e->td, 1e3 * e->sigma, 1e3 * e->systematic, e->frames, span, e->rms_deg,
+                e->residual_correlation,
+                decision.undecided ? ": undecided, estimated again on a longer window"
+                : decision.td != 0 ? ""
+                                   : ": not applied");
+  time_offset_note_ = earlier + text;
+  return decision;
 }
 
 std::vector<ImuSample> Bootstrapper::bufferSamples() const {

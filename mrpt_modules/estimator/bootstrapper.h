@@ -79,8 +79,13 @@ class Bootstrapper {
   /// The window of a successful initialization on the buffered frames.
   InitializedWindow window(const std::vector<FeatureFrame>& frames,
                            const InitializationResult& init) const;
-  /// The time offset estimated on the initialized window when significant, else 0 (once).
-  double significantTimeOffset(const InitializationResult& init);
+  /// The time offset estimated on the initialized window: td when significant (else 0), or
+  /// undecided (the window is to grow to time_offset_window_s first).
+  struct TimeOffsetDecision {
+    double td = 0;
+    bool undecided = false;
+  };
+  TimeOffsetDecision decideTimeOffset(const InitializationResult& init);
   /// The IMU samples of the buffer, in time order, once each.
   std::vector<ImuSample> bufferSamples() const;
   /// The body's orientation and velocity at time t by IMU dead reckoning from the last good state
@@ -110,6 +115,7 @@ class Bootstrapper {
   bool time_offset_estimated_ = false;
   static constexpr int kTimeOffsetAttempts = 3;  // windows tried on corrected times
   int time_offset_attempts_ = 0;
+  bool awaiting_time_offset_window_ = false;  // the buffer grows to time_offset_window_s
   std::string time_offset_note_;
   double next_attempt_t_ = -INFINITY;  // after an expensive failure (init_retry_s)
   size_t expensive_failures_ = 0;

@@ -18,6 +18,10 @@ void EstimatorOptions::validate(const OptionsLoader& loader) const {
   loader.require(camera_height_sigma >= 0, "camera_height_sigma", "must be 0 (off) or positive");
   loader.require(accel_bias_prior_sigma >= 0, "accel_bias_prior_sigma",
                  "must be 0 (off) or positive");
+  loader.require(time_offset_systematic_margin >= 0, "time_offset_systematic_margin",
+                 "must be 0 (off) or positive");
+  loader.require(time_offset_window_s >= 0, "time_offset_window_s",
+                 "must be 0 (no longer window) or positive");
   loader.require(init_window_frames >= 2, "init_window_frames", "must be 2 or more");
   loader.require(discover_confirm_after >= 1, "discover_confirm_after", "must be 1 or more");
   loader.require(discover_reject_after >= 1, "discover_reject_after", "must be 1 or more");

@@ -114,12 +114,18 @@ struct EstimatorOptions {
   size_t init_window_frames = 41;  // frames kept while initializing (2 s at 20 Hz; more when
                                    // they span less than init_window_s)
   // Camera-IMU time offset, estimated once from the first initialization window's rotations
-  // (time_offset.h), searched within ±max_time_offset_s. When at least min_time_offset_s and 3
-  // sigma (sigma allowing for the residuals' correlation), the window is initialized again on the
-  // corrected frame times, and the correction kept if that succeeds
+  // (time_offset.h), searched within ±max_time_offset_s. When at least min_time_offset_s, 3
+  // sigma (sigma allowing for the residuals' correlation) and time_offset_systematic_margin times
+  // the offset the fit's residual could fake (its `systematic` bound), the window is initialized
+  // again on the corrected frame times, and the correction kept if that succeeds. With the margin
+  // at 2, an error as large as the bound still leaves the corrected times closer to the truth.
+  // Beyond 3 sigma but within the margin, the first initialization waits until the window spans
+  // time_offset_window_s, and the estimate on that window decides
   // (docs/notes/2026-11-28-time-offset-guard.md: what it estimates on the simulator).
   bool estimate_time_offset = true;
   double min_time_offset_s = 0.010;
+  double time_offset_systematic_margin = 2;
+  double time_offset_window_s = 3.5;
   double max_time_offset_s = 0.05;
   // Mask planes that move against the camera's motion are excluded (plane_verifier.h): frames
   // verify_span_s apart are compared, judging planes with verify_min_features common features
@@ -201,6 +207,8 @@ struct EstimatorOptions {
     RPVIO_OPTION(v, max_reconnect_s);
     RPVIO_OPTION(v, estimate_time_offset);
     RPVIO_OPTION(v, min_time_offset_s);
+    RPVIO_OPTION(v, time_offset_systematic_margin);
+    RPVIO_OPTION(v, time_offset_window_s);
     RPVIO_OPTION(v, max_time_offset_s);
     RPVIO_OPTION(v, verify_planes);
     RPVIO_OPTION(v, verify_span_s);

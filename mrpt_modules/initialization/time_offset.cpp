@@ -95,7 +95,11 @@ std::optional<TimeOffsetEstimate> estimateTimeOffset(const std::vector<double>& 
   const double variance = lag0 / std::max(1, rows - 4) * (1 + rho) / (1 - rho);
   e.td = fit->x(3);
   e.gyro_bias = fit->x.head<3>();
-  e.sigma = std::sqrt(variance * (fit->J.transpose() * fit->J).inverse()(3, 3));
+  const double td_cofactor = (fit->J.transpose() * fit->J).inverse()(3, 3);
+  e.sigma = std::sqrt(variance * td_cofactor);
+  // A residual-sized error e shifts td by (J⁺e)_td, at most ‖e‖ √((JᵀJ)⁻¹)_td,td (Cauchy–Schwarz):
+  // the systematic part that sigma's noise model cannot see.
+  e.systematic = std::sqrt(lag0 * td_cofactor);
   e.rms_deg = std::sqrt(lag0 / static_cast<double>(used.size() - 1)) * 180 / M_PI;
   e.frames = used.size();
   return e;

@@ -20,6 +20,10 @@ struct TimeOffsetEstimate {
   double sigma = 0;  // s, standard deviation: residual variance times (JᵀJ)⁻¹, inflated for
                      // the residuals' correlation from frame to frame (AR(1), time_offset.cpp)
   double residual_correlation = 0;  // ρ, lag-1 autocorrelation of the rotation residuals
+  // s, the offset that a rotation error as large as the fit's residual could fake if it lay along
+  // the offset's own signature: ‖r‖ √((JᵀJ)⁻¹)_td,td. Structure from motion's rotation errors
+  // follow the motion and part of them is absorbed into td unseen by sigma (time_offset.cpp).
+  double systematic = 0;
   Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();
   double rms_deg = 0;  // rotation residual per frame
   size_t frames = 0;   // frames whose shifted interval the samples cover

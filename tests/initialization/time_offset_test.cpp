@@ -17,13 +17,13 @@ struct Window {
   std::vector<ImuSample> imu;
 };
 
-/// 2 s of frames at 20 Hz from `start`, orientations perturbed by `noise_deg` per axis.
+/// `frames` frames at 20 Hz (2 s) from `start`, orientations perturbed by `noise_deg` per axis.
 Window window(const sim::Simulator& sim, const std::vector<ImuSample>& stream, double start,
-              double td, double noise_deg) {
+              double td, double noise_deg, int frames = 41) {
   std::mt19937 rng(7);
   std::normal_distribution<double> noise(0, noise_deg * M_PI / 180);
   Window w;
-  for (int k = 0; k <= 40; ++k) {
+  for (int k = 0; k < frames; ++k) {
     const double stamp = start + 0.05 * k;
     w.t.push_back(stamp);
     const Eigen::Vector3d e(noise(rng), noise(rng), noise(rng));
@@ -76,6 +76,17 @@ TEST(TimeOffset, RecoveredFromTheTakeOffWindowWithNoise) {
     EXPECT_LT(std::abs(e->td - td), 4 * e->sigma);
     EXPECT_LT(e->sigma, 0.010 / 3);  // the bootstrapper's 10 ms floor is significant
     EXPECT_LT((e->gyro_bias - flight.sim.config().initial_bias.gyro).norm(), 1e-3);
+    // The bound a residual-sized error along the offset's signature could fake: 30 ms is within
+    // twice it on this 2 s window (undecided), beyond it on the 3.5 s one (decided).
+    const Window longer = window(flight.sim, flight.imu, 0.4, td, 0.005, 71);
+    const auto l =
+        estimateTimeOffset(longer.t, longer.R, longer.imu, Eigen::Vector3d::Zero(), 0.05);
+    ASSERT_TRUE(l) << td;
+    std::printf("  systematic %.4f s; over 3.5 s: estimate %+.4f s, systematic %.4f s\n",
+                e->systematic, l->td, l->systematic);
+    EXPECT_GT(2 * e->systematic, 0.03);
+    EXPECT_LT(2 * l->systematic, 0.03);
+    EXPECT_NEAR(l->td, td, 0.0035);
   }
 }
 
@@ -116,7 +127,7 @@ TEST(TimeOffset, SmoothlyDriftingRotationErrorsAreNotCalledAnOffset) {
   // structure from motion's errors do), not independent from frame to frame. Counted over 40
   // windows: how often |td| > 3 sigma, the bootstrapper's test (with its 10 ms floor left out).
   const Flight flight(true);
-  int called = 0, called_as_independent = 0;
+  int called = 0, called_as_independent = 0, beyond_systematic = 0;
   for (int trial = 0; trial < 40; ++trial) {
     std::mt19937 rng(100 + trial);
     std::normal_distribution<double> step(0, 0.002 * M_PI / 180);
@@ -130,13 +141,18 @@ TEST(TimeOffset, SmoothlyDriftingRotationErrorsAreNotCalledAnOffset) {
     ASSERT_TRUE(e) << trial;
     called += std::abs(e->td) > 3 * e->sigma;
     called_as_independent += std::abs(e->td) > 3 * independentResidualsSigma(w, *e);
+    beyond_systematic += std::abs(e->td) > 3 * e->sigma && std::abs(e->td) > 2 * e->systematic;
   }
-  std::printf("offset called in %d of 40 windows (%d with independent residuals assumed)\n", called,
-              called_as_independent);
+  std::printf(
+      "offset called in %d of 40 windows (%d with independent residuals assumed, %d beyond twice "
+      "the systematic bound too)\n",
+      called, called_as_independent, beyond_systematic);
   // A 3-sigma test would call 0.3 %; the AR(1) model of a random walk leaves 4 of 40, a fifth of
   // what the residuals taken as independent give.
   EXPECT_LE(called, 4);
   EXPECT_GE(called_as_independent, 16);
+  // A drift is the systematic error the bound stands for: no window gets past it.
+  EXPECT_EQ(beyond_systematic, 0);
 }
 
 TEST(TimeOffsetDegenerate, ConstantAngularRateDoesNotConstrainTheOffset) {
