@@ -41,14 +41,22 @@ std::optional<InitializedWindow> Bootstrapper::addFrame(
       imu_since_good_.clear();
     }
   }
+  if (time_offset_wait_until_ && frame.t > *time_offset_wait_until_) {
+    // No initialization on the longer window in time: the offset stays as it is.
+    time_offset_wait_until_.reset();
+    time_offset_estimated_ = true;
+    next_attempt_t_ = -INFINITY;
+    time_offset_note_ += ": no initialization on a longer window, not applied";
+  }
   if (frame.features.empty()) buffer_.clear();  // no structure can span a blank frame
   buffer_.emplace_back(frame, imu_since_previous);
   // The newest init_window_frames frames, or more when they span less than init_window_s (a
-  // camera faster than 20 Hz); time_offset_window_s while a time offset waits for that window.
-  const double keep_s =
-      awaiting_time_offset_window_ ? options_.time_offset_window_s : options_.init_window_s;
-  if ((awaiting_time_offset_window_ || buffer_.size() > options_.init_window_frames) &&
-      buffer_.back().first.t - buffer_[1].first.t >= keep_s - 1e-6)
+  // camera faster than 20 Hz); time_offset_window_s while a time offset waits for that window,
+  // after which the window shrinks back.
+  const bool waiting = time_offset_wait_until_.has_value();
+  const double keep_s = waiting ? options_.time_offset_window_s : options_.init_window_s;
+  while (buffer_.size() > 2 && (waiting || buffer_.size() > options_.init_window_frames) &&
+         buffer_.back().first.t - buffer_[1].first.t >= keep_s - 1e-6)
     buffer_.pop_front();
   // Before the first initialization, an attempt that failed as far as the geometry or the
   // alignment (0.1–0.9 s of structure from motion and bundle adjustment) is not repeated before
@@ -72,6 +80,7 @@ void Bootstrapper::restart(const std::vector<ImuSample>& imu_since_good,
   buffer_.clear();
   first_geometry_failure_t_ = -1;
   next_attempt_t_ = -INFINITY;
+  time_offset_wait_until_.reset();
   imu_since_good_ = imu_since_good;
   status_ = status_detail_ = status;
 }
@@ -111,21 +120,23 @@ std::optional<InitializedWindow> Bootstrapper::tryInitialize() {
     const TimeOffsetDecision decision = decideTimeOffset(init);
     if (decision.undecided) {
       // Not initialized yet: the window grows to time_offset_window_s, whose longer span of
-      // changing angular rate decides (docs/notes/2026-11-28-time-offset-guard.md).
-      awaiting_time_offset_window_ = true;
-      time_offset_estimated_ = false;
-      next_attempt_t_ = buffer_.front().first.t + options_.time_offset_window_s;
+      // changing angular rate decides (docs/notes/2026-11-28-time-offset-guard.md); if no
+      // window initializes within time_offset_window_s more, the offset is not applied.
+      if (!time_offset_wait_until_)
+        time_offset_wait_until_ = frames.back().t + options_.time_offset_window_s;
+      next_attempt_t_ = buffer_.front().first.t + options_.time_offset_window_s - 1e-6;
       status_ = "time offset undecided";
       status_detail_ = time_offset_note_;
       return std::nullopt;
     }
-    awaiting_time_offset_window_ = false;
+    time_offset_estimated_ = true;
+    time_offset_wait_until_.reset();
     // A significant camera-IMU offset: the same window again, on the corrected frame times; kept
     // only if it initializes there.
-    if (const double td = decision.td; td != 0) {
+    if (decision.td != 0) {
       const auto original = buffer_;
       const double original_offset = time_offset_;
-      moveBuffer(td);
+      moveBuffer(decision.td);
       if (auto corrected = tryInitialize()) {
         time_offset_note_ += ": frame times corrected";
         return corrected;
@@ -224,7 +235,6 @@ std::optional<WorldShift> Bootstrapper::reconnect(double t, const double* pose) 
 }
 
 Bootstrapper::TimeOffsetDecision Bootstrapper::decideTimeOffset(const InitializationResult& init) {
-  time_offset_estimated_ = true;
   std::vector<double> t;
   std::vector<Eigen::Matrix3d> R;
   for (size_t k = 0; k < buffer_.size(); ++k) {

@@ -69,6 +69,10 @@ class Bootstrapper {
   double timeOffset() const { return time_offset_; }
   /// What the time-offset estimation found ("" before it ran).
   const std::string& timeOffsetNote() const { return time_offset_note_; }
+  /// The time the buffered frames span (s): init_window_s, or more while a time offset waits.
+  double bufferSpan() const {
+    return buffer_.empty() ? 0 : buffer_.back().first.t - buffer_.front().first.t;
+  }
   /// The last attempt's status ("tracking" on success) and its reason with figures.
   const std::string& status() const { return status_; }
   const std::string& statusDetail() const { return status_detail_; }
@@ -79,8 +83,9 @@ class Bootstrapper {
   /// The window of a successful initialization on the buffered frames.
   InitializedWindow window(const std::vector<FeatureFrame>& frames,
                            const InitializationResult& init) const;
-  /// The time offset estimated on the initialized window: td when significant (else 0), or
-  /// undecided (the window is to grow to time_offset_window_s first).
+  /// The time offset estimated on the initialized window (once decided, the caller marks it
+  /// estimated): td when significant (else 0), or undecided (the window is to grow to
+  /// time_offset_window_s first).
   struct TimeOffsetDecision {
     double td = 0;
     bool undecided = false;
@@ -115,7 +120,8 @@ class Bootstrapper {
   bool time_offset_estimated_ = false;
   static constexpr int kTimeOffsetAttempts = 3;  // windows tried on corrected times
   int time_offset_attempts_ = 0;
-  bool awaiting_time_offset_window_ = false;  // the buffer grows to time_offset_window_s
+  // While set, an undecided offset waits for a window of time_offset_window_s, until this time.
+  std::optional<double> time_offset_wait_until_;
   std::string time_offset_note_;
   double next_attempt_t_ = -INFINITY;  // after an expensive failure (init_retry_s)
   size_t expensive_failures_ = 0;

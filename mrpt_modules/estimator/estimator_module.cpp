@@ -84,8 +84,8 @@ void SlidingWindowEstimatorModule::processOldestPending() {
   }
   // The estimator may have corrected the offset on this frame: the frame's time moved with it.
   previous_frame_t_ = frame.t + (estimator_->timeOffset() - offset);
-  if (!estimator_->timeOffsetNote().empty() && !time_offset_reported_) {
-    time_offset_reported_ = true;
+  if (estimator_->timeOffsetNote() != reported_time_offset_note_) {
+    reported_time_offset_note_ = estimator_->timeOffsetNote();
     MRPT_LOG_INFO_STREAM("t=" << timeText(frame.t) << ": " << estimator_->timeOffsetNote());
   }
   bus_->publish(EstimatorFrame{frame.t, estimator_->lastReport()});

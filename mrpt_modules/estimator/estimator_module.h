@@ -58,7 +58,7 @@ class SlidingWindowEstimatorModule : public Module {
   double previous_frame_t_ = -1;
   std::string last_status_;
   double initialized_at_ = -1;
-  bool time_offset_reported_ = false;
+  std::string reported_time_offset_note_;  // logged whenever it changes
 };
 
 }  // namespace rpvio

@@ -20,8 +20,8 @@ void EstimatorOptions::validate(const OptionsLoader& loader) const {
                  "must be 0 (off) or positive");
   loader.require(time_offset_systematic_margin >= 0, "time_offset_systematic_margin",
                  "must be 0 (off) or positive");
-  loader.require(time_offset_window_s >= 0, "time_offset_window_s",
-                 "must be 0 (no longer window) or positive");
+  loader.require(time_offset_window_s >= 0 && time_offset_window_s <= 10, "time_offset_window_s",
+                 "must be 0 to 10 s");
   loader.require(init_window_frames >= 2, "init_window_frames", "must be 2 or more");
   loader.require(discover_confirm_after >= 1, "discover_confirm_after", "must be 1 or more");
   loader.require(discover_reject_after >= 1, "discover_reject_after", "must be 1 or more");

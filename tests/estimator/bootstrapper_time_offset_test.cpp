@@ -1,0 +1,94 @@
+// The bootstrapper's undecided time offset (time_offset_window_s): exact features of the paper
+// flight whose frame stamps are 30 ms early, and a systematic margin so large that every
+// estimate is undecided on the 2 s window. The first initialization waits for a 3.5 s window and
+// decides there; a blank frame while it waits restarts the window, and the wait ends (nothing
+// applied, the window back to 2 s) once no window has initialized for time_offset_window_s.
+#include <gtest/gtest.h>
+
+#include "mrpt_modules/estimator/bootstrapper.h"
+#include "tests/initialization/exact_window.h"
+
+namespace rpvio {
+namespace {
+
+struct Start {
+  double initialized_at = -1;            // frame time of the first initialized window
+  double window_span = 0;                // its keyframes' span
+  std::map<double, double> buffer_span;  // frame time: the buffered frames' span after it
+  std::string note;
+  double time_offset = 0;
+};
+
+bool endsWith(const std::string& s, const std::string& end) {
+  return s.size() >= end.size() && s.compare(s.size() - end.size(), end.size(), end) == 0;
+}
+
+/// 7 s of the flight's frames (optionally one blank at `blank_t`) into a bootstrapper until it
+/// initializes.
+Start start(double blank_t = -1) {
+  const sim::SimConfig config;
+  sim::Simulator sim(config);
+  test::ExactWindow w = test::exactWindow(sim, 0, 7, Eigen::Vector3d::Zero());
+  const std::vector<ImuSample> imu = sim.imuStream();
+  EstimatorOptions options;
+  options.time_offset_systematic_margin = 1e6;
+  const Calibration calibration = sim.calibration();
+  const ImuLink link(calibration.imu, 9.81, ImuLinkOptions{});
+  Bootstrapper bootstrapper(calibration, options, link);
+  Start out;
+  size_t next = 0;
+  for (FeatureFrame frame : w.frames) {
+    std::vector<ImuSample> since_previous;
+    for (; next < imu.size() && imu[next].t <= frame.t; ++next) since_previous.push_back(imu[next]);
+    if (std::abs(frame.t - blank_t) < 0.025) frame.features.clear();
+    frame.t -= 0.03;  // the camera's stamps: t_imu = t_frame + 0.03
+    const auto window = bootstrapper.addFrame(frame, since_previous);
+    out.buffer_span[frame.t] = bootstrapper.bufferSpan();
+    if (window) {
+      out.initialized_at = frame.t;
+      out.window_span = window->keyframes.back().features.t - window->keyframes.front().features.t;
+      break;
+    }
+  }
+  out.note = bootstrapper.timeOffsetNote();
+  out.time_offset = bootstrapper.timeOffset();
+  return out;
+}
+
+/// The buffered span after the last frame at or before t.
+double spanAt(const Start& s, double t) { return std::prev(s.buffer_span.upper_bound(t))->second; }
+
+TEST(BootstrapperTimeOffset, AnUndecidedOffsetWaitsForTheLongerWindowWhichDecides) {
+  const Start s = start();
+  std::printf("initialized at %.2f s, keyframes over %.2f s: %s\n", s.initialized_at, s.window_span,
+              s.note.c_str());
+  EXPECT_GE(s.initialized_at, 3.5 - 0.03 - 1e-6);
+  EXPECT_LT(s.initialized_at, 4.0);
+  EXPECT_GT(s.window_span, 3.0);   // keyframes evenly spaced over the 3.5 s window
+  EXPECT_GT(spanAt(s, 3.0), 2.9);  // the window grew past init_window_s
+  EXPECT_NE(s.note.find("over 2.0 s"), std::string::npos) << s.note;
+  EXPECT_NE(s.note.find("undecided, estimated again on a longer window; then"), std::string::npos)
+      << s.note;
+  EXPECT_NE(s.note.find("over 3.5 s"), std::string::npos) << s.note;
+  // Within the (huge) margin on 3.5 s too: decided, not applied.
+  EXPECT_TRUE(endsWith(s.note, "): not applied")) << s.note;
+  EXPECT_EQ(s.time_offset, 0);
+}
+
+TEST(BootstrapperTimeOffset, AWaitThatNoWindowEndsGivesUpAndTheWindowShrinksBack) {
+  // The blank frame at 2.5 s clears the window the wait grows: no 3.5 s window before 6.0 s, and
+  // the wait ends at 2.0 + 3.5 s. (This flight then has too little excitation to initialize
+  // again within the 7 s.)
+  const Start s = start(2.5);
+  std::printf("spans at 5.4 / 5.6 s: %.2f / %.2f s: %s\n", spanAt(s, 5.4), spanAt(s, 5.6),
+              s.note.c_str());
+  EXPECT_LT(spanAt(s, 2.5), 0.01);  // cleared by the blank frame
+  EXPECT_GT(spanAt(s, 5.4), 2.8);   // still growing, from 2.5 s on
+  EXPECT_NEAR(spanAt(s, 5.6), 2.0, 0.06);
+  EXPECT_TRUE(endsWith(s.note, ": no initialization on a longer window, not applied")) << s.note;
+  EXPECT_EQ(s.note.find("over 3.5 s"), std::string::npos) << s.note;
+  EXPECT_EQ(s.time_offset, 0);
+}
+
+}  // namespace
+}  // namespace rpvio
