@@ -126,7 +126,8 @@ std::optional<InitializedWindow> Bootstrapper::tryInitialize() {
         time_offset_wait_until_ = frames.back().t + options_.time_offset_window_s;
       next_attempt_t_ = buffer_.front().first.t + options_.time_offset_window_s - 1e-6;
       status_ = "time offset undecided";
-      status_detail_ = time_offset_note_;
+      status_detail_ = "time offset undecided: waiting for a window of " +
+                       std::to_string(options_.time_offset_window_s).substr(0, 3) + " s";
       return std::nullopt;
     }
     time_offset_estimated_ = true;
