@@ -1,6 +1,7 @@
 #include "mrpt_modules/estimator/bootstrapper.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include "mrpt_modules/factors/parameter_blocks.h"
 #include "mrpt_modules/initialization/time_offset.h"
@@ -126,8 +127,10 @@ std::optional<InitializedWindow> Bootstrapper::tryInitialize() {
         time_offset_wait_until_ = frames.back().t + options_.time_offset_window_s;
       next_attempt_t_ = buffer_.front().first.t + options_.time_offset_window_s - 1e-6;
       status_ = "time offset undecided";
-      status_detail_ = "time offset undecided: waiting for a window of " +
-                       std::to_string(options_.time_offset_window_s).substr(0, 3) + " s";
+      char detail[80];
+      std::snprintf(detail, sizeof detail, "time offset undecided: waiting for a window of %.1f s",
+                    options_.time_offset_window_s);
+      status_detail_ = detail;
       return std::nullopt;
     }
     time_offset_estimated_ = true;
@@ -251,8 +254,8 @@ Bootstrapper::TimeOffsetDecision Bootstrapper::decideTimeOffset(const Initializa
     return {};
   }
   // Significant: not noise (3 sigma) and more than the margin times what the residual could fake
-  // (systematic). Noise-significant but not beyond the systematic bound: undecided while the
-  // window is shorter than time_offset_window_s.
+  // (systematic). Noise-significant but within that margin: undecided while the window is
+  // shorter than time_offset_window_s.
   const bool noise_significant =
       std::abs(e->td) >= options_.min_time_offset_s && std::abs(e->td) > 3 * e->sigma;
   const bool beyond_systematic =
