@@ -260,7 +260,7 @@ Bootstrapper::TimeOffsetDecision Bootstrapper::decideTimeOffset(const Initializa
       std::abs(e->td) >= options_.min_time_offset_s && std::abs(e->td) > 3 * e->sigma;
   const bool beyond_systematic =
       std::abs(e->td) > options_.time_offset_systematic_margin * e->systematic;
-  const double span = t.back() - t.front();
+  const double span = bufferSpan();
   TimeOffsetDecision decision;
   decision.undecided =
       noise_significant && !beyond_systematic && span < options_.time_offset_window_s - 1e-6;

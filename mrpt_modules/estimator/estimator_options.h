@@ -116,9 +116,9 @@ struct EstimatorOptions {
   // Camera-IMU time offset, estimated once from the first initialization window's rotations
   // (time_offset.h), searched within ±max_time_offset_s. When at least min_time_offset_s, 3
   // sigma (sigma allowing for the residuals' correlation) and time_offset_systematic_margin times
-  // the offset the fit's residual could fake (its `systematic` bound), the window is initialized
+  // the offset the fit's residual could fake (its `systematic` scale), the window is initialized
   // again on the corrected frame times, and the correction kept if that succeeds. With the margin
-  // at 2, an error as large as the bound still leaves the corrected times closer to the truth.
+  // at 2, an error of that size still leaves the corrected times closer to the truth.
   // Beyond 3 sigma but within the margin, the first initialization waits until the window spans
   // time_offset_window_s, and the estimate on that window decides
   // (docs/notes/2026-11-28-time-offset-guard.md: what it estimates on the simulator).

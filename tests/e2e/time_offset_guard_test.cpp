@@ -1,10 +1,10 @@
 // The camera-IMU time-offset guard on the paper flight, whose 2 s take-off window has so little
 // change of angular rate that structure from motion's rotation errors pass for 10-15 ms of offset
 // (docs/notes/2026-11-28-time-offset-guard.md). An estimate beyond 3 sigma but within twice its
-// systematic bound is undecided: the first initialization waits for a 3.5 s window, whose
+// systematic scale is undecided: the first initialization waits for a 3.5 s window, whose
 // estimate decides. The two sequences are those whose 2 s estimates were the worst: seed-2 C8
-// without offset read +12.2 ms (mask-vins, applied before the bound), seed-4 static with 30 ms
-// read +14.6 ms (vins-mono); their first 5 s, rendered here, read the same.
+// without offset read +12.2 ms (mask-vins, applied before the scale's test), seed-4 static with 30
+// ms read +14.6 ms (vins-mono); their first 5 s, rendered here, read the same.
 #include <gtest/gtest.h>
 
 #include "tests/test_util.h"

@@ -76,8 +76,8 @@ TEST(TimeOffset, RecoveredFromTheTakeOffWindowWithNoise) {
     EXPECT_LT(std::abs(e->td - td), 4 * e->sigma);
     EXPECT_LT(e->sigma, 0.010 / 3);  // the bootstrapper's 10 ms floor is significant
     EXPECT_LT((e->gyro_bias - flight.sim.config().initial_bias.gyro).norm(), 1e-3);
-    // The bound a residual-sized error along the offset's signature could fake: 30 ms is within
-    // twice it on this 2 s window (undecided), beyond it on the 3.5 s one (decided).
+    // The scale: what a residual-sized error along the offset's signature could fake: 30 ms is
+    // within twice it on this 2 s window (undecided), beyond it on the 3.5 s one (decided).
     const Window longer = window(flight.sim, flight.imu, 0.4, td, 0.005, 71);
     const auto l =
         estimateTimeOffset(longer.t, longer.R, longer.imu, Eigen::Vector3d::Zero(), 0.05);
@@ -145,13 +145,13 @@ TEST(TimeOffset, SmoothlyDriftingRotationErrorsAreNotCalledAnOffset) {
   }
   std::printf(
       "offset called in %d of 40 windows (%d with independent residuals assumed, %d beyond twice "
-      "the systematic bound too)\n",
+      "the systematic scale too)\n",
       called, called_as_independent, beyond_systematic);
   // A 3-sigma test would call 0.3 %; the AR(1) model of a random walk leaves 4 of 40, a fifth of
   // what the residuals taken as independent give.
   EXPECT_LE(called, 4);
   EXPECT_GE(called_as_independent, 16);
-  // A drift is the systematic error the bound stands for: no window gets past it.
+  // A drift is the systematic error the scale stands for: no window gets past it.
   EXPECT_EQ(beyond_systematic, 0);
 }
 
