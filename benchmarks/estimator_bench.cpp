@@ -77,11 +77,12 @@ void runEstimator(benchmark::State& state, const std::string& mode) {
     for (size_t k = 0; k < r.frames.size(); ++k) {
       const bool initialized = estimator.initialized();
       const auto start = std::chrono::steady_clock::now();
-      const auto state = estimator.addFrame(r.frames[k], r.imu[k]);
+      const auto states = estimator.addFrame(r.frames[k], r.imu[k]);
       const double s =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       (initialized ? tracking_s : waiting_s).push_back(s);
-      if (initialized && state) (state->keyframe ? keyframe_s : between_keyframes_s).push_back(s);
+      if (initialized && !states.empty())
+        (states.back().keyframe ? keyframe_s : between_keyframes_s).push_back(s);
     }
     estimator.finishMap();
     refinement_s.push_back(map.refinementSeconds());

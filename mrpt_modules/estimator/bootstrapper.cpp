@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include "mrpt_modules/factors/parameter_blocks.h"
 #include "mrpt_modules/initialization/time_offset.h"
@@ -43,11 +44,13 @@ std::optional<InitializedWindow> Bootstrapper::addFrame(
     }
   }
   if (time_offset_wait_until_ && frame.t > *time_offset_wait_until_) {
-    // No initialization on the longer window in time: the offset stays as it is.
+    // No initialization on the longer window in time: the offset stays as it is, and the window
+    // it was undecided on initializes now, with the frames since tracked on it.
     time_offset_wait_until_.reset();
     time_offset_estimated_ = true;
     next_attempt_t_ = -INFINITY;
     time_offset_note_ += ": no initialization on a longer window, not applied";
+    if (auto window = takeUndecidedWindow(frame, imu_since_previous)) return window;
   }
   if (frame.features.empty()) buffer_.clear();  // no structure can span a blank frame
   buffer_.emplace_back(frame, imu_since_previous);
@@ -82,6 +85,7 @@ void Bootstrapper::restart(const std::vector<ImuSample>& imu_since_good,
   first_geometry_failure_t_ = -1;
   next_attempt_t_ = -INFINITY;
   time_offset_wait_until_.reset();
+  undecided_window_.reset();
   imu_since_good_ = imu_since_good;
   status_ = status_detail_ = status;
 }
@@ -122,9 +126,12 @@ std::optional<InitializedWindow> Bootstrapper::tryInitialize() {
     if (decision.undecided) {
       // Not initialized yet: the window grows to time_offset_window_s, whose longer span of
       // changing angular rate decides (docs/notes/2026-11-28-time-offset-guard.md); if no
-      // window initializes within time_offset_window_s more, the offset is not applied.
-      if (!time_offset_wait_until_)
+      // window initializes within time_offset_window_s more, the offset is not applied and this
+      // window is taken then (takeUndecidedWindow).
+      if (!time_offset_wait_until_) {
         time_offset_wait_until_ = frames.back().t + options_.time_offset_window_s;
+        undecided_window_ = window(frames, init);
+      }
       next_attempt_t_ = buffer_.front().first.t + options_.time_offset_window_s - 1e-6;
       status_ = "time offset undecided";
       char detail[80];
@@ -135,6 +142,7 @@ std::optional<InitializedWindow> Bootstrapper::tryInitialize() {
     }
     time_offset_estimated_ = true;
     time_offset_wait_until_.reset();
+    undecided_window_.reset();
     // A significant camera-IMU offset: the same window again, on the corrected frame times; kept
     // only if it initializes there.
     if (decision.td != 0) {
@@ -276,6 +284,27 @@ Bootstrapper::TimeOffsetDecision Bootstrapper::decideTimeOffset(const Initializa
                                    : ": not applied");
   time_offset_note_ = earlier + text;
   return decision;
+}
+
+std::optional<InitializedWindow> Bootstrapper::takeUndecidedWindow(
+    const FeatureFrame& frame, const std::vector<ImuSample>& imu_since_previous) {
+  std::optional<InitializedWindow> window = std::exchange(undecided_window_, std::nullopt);
+  if (!window) return std::nullopt;
+  const double newest = window->keyframes.back().features.t;
+  // A blank frame since cleared the buffer: the frames after the window are not all there.
+  if (buffer_.empty() || buffer_.front().first.t > newest) return std::nullopt;
+  auto screened = [&](const FeatureFrame& f) { return screen_ ? screen_(f) : f; };
+  for (const auto& [buffered, imu] : buffer_)
+    if (buffered.t > newest) window->frames_after.emplace_back(screened(buffered), imu);
+  window->frames_after.emplace_back(screened(frame), imu_since_previous);
+  buffer_.clear();
+  status_ = "tracking";
+  char detail[120];
+  std::snprintf(detail, sizeof detail,
+                "initialized on the window ending at t=%.2f s, %zu frames since tracked on it",
+                newest, window->frames_after.size());
+  status_detail_ = detail;
+  return window;
 }
 
 std::vector<ImuSample> Bootstrapper::bufferSamples() const {

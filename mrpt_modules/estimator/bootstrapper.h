@@ -31,6 +31,10 @@ struct InitializedWindow {
   std::vector<Keyframe> keyframes;
   std::map<int, Eigen::Vector3d> points;  // feature id: world point of the initializer's depth
   std::map<int, WorldPlane> planes;       // mask label: plane
+  /// Frames after the newest keyframe, each with its IMU samples since the previous one, to be
+  /// tracked on the window at once: an initialization taken late (the window an undecided time
+  /// offset waited on, when no longer window initialized); empty otherwise.
+  std::vector<std::pair<FeatureFrame, std::vector<ImuSample>>> frames_after;
 };
 
 /// Moves a re-initialized window into the world of the last good state (both have z up).
@@ -91,6 +95,10 @@ class Bootstrapper {
     bool undecided = false;
   };
   TimeOffsetDecision decideTimeOffset(const InitializationResult& init);
+  /// At the end of an undecided offset's wait, before `frame` is buffered: the undecided window
+  /// with the frames buffered since and `frame`, if the buffer still reaches back to it.
+  std::optional<InitializedWindow> takeUndecidedWindow(
+      const FeatureFrame& frame, const std::vector<ImuSample>& imu_since_previous);
   /// The IMU samples of the buffer, in time order, once each.
   std::vector<ImuSample> bufferSamples() const;
   /// The body's orientation and velocity at time t by IMU dead reckoning from the last good state
@@ -122,6 +130,8 @@ class Bootstrapper {
   int time_offset_attempts_ = 0;
   // While set, an undecided offset waits for a window of time_offset_window_s, until this time.
   std::optional<double> time_offset_wait_until_;
+  // The initialization of the window whose offset was undecided: taken when the wait ends.
+  std::optional<InitializedWindow> undecided_window_;
   std::string time_offset_note_;
   double next_attempt_t_ = -INFINITY;  // after an expensive failure (init_retry_s)
   size_t expensive_failures_ = 0;

@@ -74,7 +74,7 @@ void SlidingWindowEstimatorModule::processOldestPending() {
     if (s.t <= frame.t) samples.push_back(s);
   if (previous_frame_t_ < 0) samples.clear();
   const size_t rejected_before = estimator_->planeRejections().size();
-  const auto state = estimator_->addFrame(frame, samples);
+  const auto states = estimator_->addFrame(frame, samples);
   for (size_t i = rejected_before; i < estimator_->planeRejections().size(); ++i) {
     const PlaneRejection& r = estimator_->planeRejections()[i];
     MRPT_LOG_WARN_FMT(
@@ -96,10 +96,8 @@ void SlidingWindowEstimatorModule::processOldestPending() {
     else
       MRPT_LOG_INFO_STREAM("t=" << timeText(frame.t) << ": " << estimator_->statusDetail());
   }
-  if (state) {
-    if (initialized_at_ < 0) initialized_at_ = frame.t;
-    bus_->publish(*state);
-  }
+  if (!states.empty() && initialized_at_ < 0) initialized_at_ = frame.t;
+  for (const StateEstimate& state : states) bus_->publish(state);
 }
 
 }  // namespace rpvio

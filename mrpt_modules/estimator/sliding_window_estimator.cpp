@@ -526,7 +526,7 @@ FeatureFrame SlidingWindowEstimator::screenPlanes(const FeatureFrame& frame,
   return kept;
 }
 
-std::optional<StateEstimate> SlidingWindowEstimator::addFrame(
+std::vector<StateEstimate> SlidingWindowEstimator::addFrame(
     const FeatureFrame& camera_frame, const std::vector<ImuSample>& imu_since_previous) {
   const auto start = std::chrono::steady_clock::now();       // the screening's time is counted too
   const bool finished_keyframe_work = finishKeyframeWork();  // on the window as it was left
@@ -539,21 +539,38 @@ std::optional<StateEstimate> SlidingWindowEstimator::addFrame(
   };
   report_ = FrameReport{};
   report_.finished_keyframe_work = finished_keyframe_work;
-  if (!initialized_) {
-    report_.state = "initializing";
-    const auto init = bootstrapper_.addFrame(to_bootstrapper, imu_since_previous);
-    status_ = bootstrapper_.status();
-    status_detail_ = bootstrapper_.statusDetail();
-    if (init) startWindow(*init);
+  std::vector<StateEstimate> states;
+  if (initialized_) {
+    if (auto s = track(frame, imu_since_previous)) states.push_back(*s);
     report_.optimization_ms = elapsed_ms();
-    if (!initialized_) return std::nullopt;
+    return states;
+  }
+  report_.state = "initializing";
+  const auto init = bootstrapper_.addFrame(to_bootstrapper, imu_since_previous);
+  status_ = bootstrapper_.status();
+  status_detail_ = bootstrapper_.statusDetail();
+  if (init) startWindow(*init);
+  if (initialized_) {
     report_.state = "tracking";
     StateEstimate s;
     s.t = window_.back()->features.t;  // corrected if the time offset was
     std::copy(window_.back()->pose, window_.back()->pose + 7, s.pose);
     s.keyframe = true;
-    return s;
+    states.push_back(s);
+    // A late initialization: the frames since its window, this one last. A reset among them
+    // drops the rest (the bootstrapper starts anew from the next frame).
+    for (const auto& [later, samples] : init->frames_after) {
+      finishKeyframeWork();
+      if (auto tracked = track(later, samples)) states.push_back(*tracked);
+      if (!initialized_) break;
+    }
   }
+  report_.optimization_ms = elapsed_ms();
+  return states;
+}
+
+std::optional<StateEstimate> SlidingWindowEstimator::track(
+    const FeatureFrame& frame, const std::vector<ImuSample>& imu_since_previous) {
   const Frame& previous = *window_.back();
   auto f = std::make_unique<Frame>();
   f->id = next_frame_id_++;
@@ -591,7 +608,6 @@ std::optional<StateEstimate> SlidingWindowEstimator::addFrame(
   const std::string why = failure(predicted);
   if (!why.empty()) {
     reset(why, imu_since_previous);  // the samples from the last good state (the previous frame) on
-    report_.optimization_ms = elapsed_ms();
     return std::nullopt;
   }
   StateEstimate s;
@@ -604,7 +620,6 @@ std::optional<StateEstimate> SlidingWindowEstimator::addFrame(
   else if (window_.size() > options_.window_size + 1 && !keyframe_work_deferred_)
     marginalizeOldest();
   report_.state = "tracking";
-  report_.optimization_ms = elapsed_ms();
   return s;
 }
 

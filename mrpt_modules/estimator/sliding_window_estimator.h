@@ -63,10 +63,11 @@ class SlidingWindowEstimator {
   SlidingWindowEstimator& operator=(const SlidingWindowEstimator&) = delete;  // the IMU link
 
   /// A new frame (IMU clock) with the IMU samples since the previous frame (first sample at or
-  /// before the previous frame's time, last at or before this frame's). Returns the frame's body
-  /// pose once initialized.
-  std::optional<StateEstimate> addFrame(const FeatureFrame& frame,
-                                        const std::vector<ImuSample>& imu_since_previous);
+  /// before the previous frame's time, last at or before this frame's). Returns the body poses
+  /// this frame gave, oldest first: none while initializing, else the frame's own; at a late
+  /// initialization (an undecided time offset's wait) those of the frames since its window too.
+  std::vector<StateEstimate> addFrame(const FeatureFrame& frame,
+                                      const std::vector<ImuSample>& imu_since_previous);
 
   bool initialized() const { return initialized_; }
   size_t resets() const { return reset_log_.size(); }
@@ -129,6 +130,9 @@ class SlidingWindowEstimator {
   /// The window an initializer gave (the bootstrapper's), placed in the old world when it
   /// reconnects, then triangulated and optimized.
   void startWindow(const InitializedWindow& init);
+  /// A frame (screened) on the initialized window: its pose, or none when the window is reset.
+  std::optional<StateEstimate> track(const FeatureFrame& frame,
+                                     const std::vector<ImuSample>& imu_since_previous);
   void moveWindow(const WorldShift& shift);
   Eigen::Isometry3d camera(uint64_t frame_id) const;
   CameraPoseLookup cameraLookup() const;

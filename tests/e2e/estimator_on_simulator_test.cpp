@@ -88,7 +88,8 @@ SimulatorRun runOnSimulator(int characters, double duration, const RunSetup& set
     std::vector<ImuSample> samples(imu.begin() + previous, imu.begin() + now + 1);
     previous = now;
     const PlaneEstimates planes_before = estimator.planes();
-    const auto state = estimator.addFrame(features, k == 0 ? std::vector<ImuSample>{} : samples);
+    const auto states = estimator.addFrame(features, k == 0 ? std::vector<ImuSample>{} : samples);
+    const StateEstimate* state = states.empty() ? nullptr : &states.back();
     if (state && !state->keyframe) {
       ++run.between_keyframes;
       run.between_keyframes_moving_planes += anyPlaneMoved(planes_before, estimator.planes());

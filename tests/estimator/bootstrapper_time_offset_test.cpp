@@ -2,8 +2,13 @@
 // flight whose frame stamps are 30 ms early, and a systematic margin so large that every
 // estimate is undecided on the 2 s window. The first initialization waits for a 3.5 s window and
 // decides there; a blank frame while it waits restarts the window, and the wait ends (nothing
-// applied, the window back to 2 s) once no window has initialized for time_offset_window_s.
+// applied, the window back to 2 s) once no window has initialized for time_offset_window_s; when
+// the longer windows fail but the buffer still reaches back to the undecided window, that window
+// initializes at the wait's end with the frames since to be tracked on it.
 #include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
 
 #include "mrpt_modules/estimator/bootstrapper.h"
 #include "tests/initialization/exact_window.h"
@@ -17,6 +22,9 @@ struct Start {
   std::map<double, double> buffer_span;  // frame time: the buffered frames' span after it
   std::string note;
   double time_offset = 0;
+  double newest_keyframe_t = -1;
+  // The frames to be tracked on the window at once: times and their first and last IMU samples.
+  std::vector<std::array<double, 3>> frames_after;
 };
 
 bool endsWith(const std::string& s, const std::string& end) {
@@ -24,8 +32,8 @@ bool endsWith(const std::string& s, const std::string& end) {
 }
 
 /// 7 s of the flight's frames (optionally one blank at `blank_t`) into a bootstrapper until it
-/// initializes.
-Start start(double blank_t = -1) {
+/// initializes; `screen` for what the initializers see.
+Start start(double blank_t = -1, Bootstrapper::FrameScreen screen = {}) {
   const sim::SimConfig config;
   sim::Simulator sim(config);
   test::ExactWindow w = test::exactWindow(sim, 0, 7, Eigen::Vector3d::Zero());
@@ -35,6 +43,7 @@ Start start(double blank_t = -1) {
   const Calibration calibration = sim.calibration();
   const ImuLink link(calibration.imu, 9.81, ImuLinkOptions{});
   Bootstrapper bootstrapper(calibration, options, link);
+  if (screen) bootstrapper.setFrameScreen(screen);
   Start out;
   size_t next = 0;
   for (FeatureFrame frame : w.frames) {
@@ -47,6 +56,10 @@ Start start(double blank_t = -1) {
     if (window) {
       out.initialized_at = frame.t;
       out.window_span = window->keyframes.back().features.t - window->keyframes.front().features.t;
+      out.newest_keyframe_t = window->keyframes.back().features.t;
+      for (const auto& [later, samples] : window->frames_after)
+        out.frames_after.push_back({later.t, samples.empty() ? NAN : samples.front().t,
+                                    samples.empty() ? NAN : samples.back().t});
       break;
     }
   }
@@ -72,6 +85,38 @@ TEST(BootstrapperTimeOffset, AnUndecidedOffsetWaitsForTheLongerWindowWhichDecide
   EXPECT_NE(s.note.find("over 3.5 s"), std::string::npos) << s.note;
   // Within the (huge) margin on 3.5 s too: decided, not applied.
   EXPECT_TRUE(endsWith(s.note, "): not applied")) << s.note;
+  EXPECT_EQ(s.time_offset, 0);
+  EXPECT_TRUE(s.frames_after.empty());  // initialized on its newest frame
+}
+
+TEST(BootstrapperTimeOffset, WhenNoLongerWindowInitializesTheUndecidedOneIsTakenLate) {
+  // The initializers see no features on the frames of 2.4–2.6 s: every window holding them
+  // fails, the 3.5 s ones up to 6.1 s, beyond the wait's end at 2.0 + 3.5 s.
+  const Start s = start(-1, [](const FeatureFrame& f) {
+    FeatureFrame seen = f;
+    if (f.t > 2.4 && f.t < 2.6) seen.features.clear();
+    return seen;
+  });
+  std::printf("initialized at %.2f s on the window ending at %.2f s, %zu frames after it: %s\n",
+              s.initialized_at, s.newest_keyframe_t, s.frames_after.size(), s.note.c_str());
+  EXPECT_GT(s.initialized_at, s.newest_keyframe_t + 3.5);
+  EXPECT_LT(s.initialized_at, s.newest_keyframe_t + 3.5 + 0.06);  // the first frame past the wait
+  EXPECT_NEAR(s.newest_keyframe_t, 2.0 - 0.03, 0.06);             // the undecided 2 s window
+  EXPECT_NEAR(s.window_span, 2.0, 0.06);
+  ASSERT_FALSE(s.frames_after.empty());
+  EXPECT_EQ(s.frames_after.back()[0], s.initialized_at);  // this frame last
+  // Every frame since the window.
+  EXPECT_EQ(s.frames_after.size(),
+            static_cast<size_t>(std::lround((s.initialized_at - s.newest_keyframe_t) / 0.05)));
+  double previous_t = s.newest_keyframe_t;
+  for (const auto& [t, first_sample, last_sample] : s.frames_after) {
+    EXPECT_NEAR(t - previous_t, 0.05, 1e-6);
+    // Its samples as given (the IMU clock is 30 ms ahead; 200 Hz).
+    EXPECT_NEAR(first_sample, previous_t + 0.03, 0.006);
+    EXPECT_NEAR(last_sample, t + 0.03, 0.006);
+    previous_t = t;
+  }
+  EXPECT_TRUE(endsWith(s.note, ": no initialization on a longer window, not applied")) << s.note;
   EXPECT_EQ(s.time_offset, 0);
 }
 

@@ -183,7 +183,8 @@ RunResult run(HomographyPlanes homography, double duration, const Revisit* revis
     previous_imu = now;
     const PlaneEstimates planes_before = estimator.planes();
     const size_t covariances_before = estimator.covarianceUpdates();
-    const auto state = estimator.addFrame(frame, samples);
+    const auto states = estimator.addFrame(frame, samples);
+    const rpvio::StateEstimate* state = states.empty() ? nullptr : &states.back();
     result.frames_finishing_keyframe_work += estimator.lastReport().finished_keyframe_work;
     if (estimator.covarianceUpdates() > covariances_before) {
       ++result.frames_with_covariances;
