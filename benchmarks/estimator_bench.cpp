@@ -80,6 +80,7 @@ void runEstimator(benchmark::State& state, const std::string& mode) {
       const auto states = estimator.addFrame(r.frames[k], r.imu[k]);
       const double s =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      // The initialization's frame (a late one tracks its frames since too) counts as waiting.
       (initialized ? tracking_s : waiting_s).push_back(s);
       if (initialized && !states.empty())
         (states.back().keyframe ? keyframe_s : between_keyframes_s).push_back(s);

@@ -293,10 +293,9 @@ std::optional<InitializedWindow> Bootstrapper::takeUndecidedWindow(
   const double newest = window->keyframes.back().features.t;
   // A blank frame since cleared the buffer: the frames after the window are not all there.
   if (buffer_.empty() || buffer_.front().first.t > newest) return std::nullopt;
-  auto screened = [&](const FeatureFrame& f) { return screen_ ? screen_(f) : f; };
   for (const auto& [buffered, imu] : buffer_)
-    if (buffered.t > newest) window->frames_after.emplace_back(screened(buffered), imu);
-  window->frames_after.emplace_back(screened(frame), imu_since_previous);
+    if (buffered.t > newest) window->frames_after.emplace_back(buffered, imu);
+  window->frames_after.emplace_back(frame, imu_since_previous);
   buffer_.clear();
   status_ = "tracking";
   char detail[120];

@@ -31,9 +31,10 @@ struct InitializedWindow {
   std::vector<Keyframe> keyframes;
   std::map<int, Eigen::Vector3d> points;  // feature id: world point of the initializer's depth
   std::map<int, WorldPlane> planes;       // mask label: plane
-  /// Frames after the newest keyframe, each with its IMU samples since the previous one, to be
-  /// tracked on the window at once: an initialization taken late (the window an undecided time
-  /// offset waited on, when no longer window initialized); empty otherwise.
+  /// Frames after the newest keyframe as given to addFrame (not screened), each with its IMU
+  /// samples since the previous one, to be tracked on the window at once: an initialization
+  /// taken late (the window an undecided time offset waited on, when no longer window
+  /// initialized); empty otherwise.
   std::vector<std::pair<FeatureFrame, std::vector<ImuSample>>> frames_after;
 };
 

@@ -4,7 +4,8 @@
 // the IMU clock by the time offset: the calibration's, corrected by the estimator's estimate). A
 // frame waits until the IMU stream has reached its time; at the end, the waiting frames are
 // processed with the samples there are. Publishes an EstimatorFrame per frame processed and a
-// StateEstimate per frame once initialized; says once per change why it is not (yet) tracking;
+// StateEstimate per frame once initialized (a late initialization's frames since its window come
+// with the frame that initialized it); says once per change why it is not (yet) tracking;
 // publishes what leaves the window for the MapBuilderModule (map_sink.h) and, at the end, the
 // EstimatorSummary. Options: section [SlidingWindowEstimatorModule] (see EstimatorOptions).
 #include <deque>

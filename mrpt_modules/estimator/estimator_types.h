@@ -48,7 +48,9 @@ struct ResetEvent {
 
 /// Published by the estimator module when the run ends (after its window went to the map).
 struct EstimatorSummary {
-  double initialized_at = -1;  // time of the first pose, -1 if never
+  // The frame on which the estimator initialized, -1 if never (a late initialization's first pose
+  // is earlier: Bootstrapper, undecided time offset).
+  double initialized_at = -1;
   double time_offset_s = 0;
   std::string time_offset_note;
   std::vector<ResetEvent> resets;

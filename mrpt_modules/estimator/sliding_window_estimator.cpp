@@ -47,9 +47,12 @@ SlidingWindowEstimator::SlidingWindowEstimator(const Calibration& calibration,
   // While initializing, the labels discovered since and the planes rejected since reach back
   // over the buffered frames.
   if (options_.discover_planes)
-    bootstrapper_.setFrameScreen([this](const FeatureFrame& f) {
-      return plane_verifier_.withoutRejected(plane_discovery_.labelled(f));
-    });
+    bootstrapper_.setFrameScreen([this](const FeatureFrame& f) { return screenedNow(f); });
+}
+
+FeatureFrame SlidingWindowEstimator::screenedNow(const FeatureFrame& frame) const {
+  return plane_verifier_.withoutRejected(options_.discover_planes ? plane_discovery_.labelled(frame)
+                                                                  : frame);
 }
 
 Eigen::Isometry3d SlidingWindowEstimator::camera(uint64_t frame_id) const {
@@ -546,27 +549,41 @@ std::vector<StateEstimate> SlidingWindowEstimator::addFrame(
     return states;
   }
   report_.state = "initializing";
-  const auto init = bootstrapper_.addFrame(to_bootstrapper, imu_since_previous);
-  status_ = bootstrapper_.status();
-  status_detail_ = bootstrapper_.statusDetail();
-  if (init) startWindow(*init);
-  if (initialized_) {
-    report_.state = "tracking";
-    StateEstimate s;
-    s.t = window_.back()->features.t;  // corrected if the time offset was
-    std::copy(window_.back()->pose, window_.back()->pose + 7, s.pose);
-    s.keyframe = true;
-    states.push_back(s);
-    // A late initialization: the frames since its window, this one last. A reset among them
-    // drops the rest (the bootstrapper starts anew from the next frame).
-    for (const auto& [later, samples] : init->frames_after) {
-      finishKeyframeWork();
-      if (auto tracked = track(later, samples)) states.push_back(*tracked);
-      if (!initialized_) break;
-    }
-  }
+  bootstrap(to_bootstrapper, imu_since_previous, states);
   report_.optimization_ms = elapsed_ms();
   return states;
+}
+
+void SlidingWindowEstimator::bootstrap(const FeatureFrame& frame,
+                                       const std::vector<ImuSample>& imu_since_previous,
+                                       std::vector<StateEstimate>& states) {
+  auto init = bootstrapper_.addFrame(frame, imu_since_previous);
+  status_ = bootstrapper_.status();
+  status_detail_ = bootstrapper_.statusDetail();
+  if (!init) return;
+  // A late window was screened at its own time: the planes found moving since are taken out.
+  const bool late = !init->frames_after.empty();
+  if (late)
+    for (auto& keyframe : init->keyframes) keyframe.features = screenedNow(keyframe.features);
+  startWindow(*init);
+  if (late) forgetUnseenPlanes();
+  report_.state = "tracking";
+  StateEstimate s;
+  s.t = window_.back()->features.t;  // corrected if the time offset was
+  std::copy(window_.back()->pose, window_.back()->pose + 7, s.pose);
+  s.keyframe = true;
+  states.push_back(s);
+  if (!late) return;
+  // The late initialization's frames since its window, this one last. After a reset among them,
+  // the rest go to the bootstrapper as new frames would (its dead reckoning needs their IMU).
+  for (const auto& [later, samples] : init->frames_after) {
+    if (!initialized_) {
+      bootstrap(later, samples, states);
+      continue;
+    }
+    report_.finished_keyframe_work |= finishKeyframeWork();
+    if (auto tracked = track(screenedNow(later), samples)) states.push_back(*tracked);
+  }
 }
 
 std::optional<StateEstimate> SlidingWindowEstimator::track(

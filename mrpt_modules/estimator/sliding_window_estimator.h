@@ -130,6 +130,13 @@ class SlidingWindowEstimator {
   /// The window an initializer gave (the bootstrapper's), placed in the old world when it
   /// reconnects, then triangulated and optimized.
   void startWindow(const InitializedWindow& init);
+  /// A frame buffered earlier (as given to the bootstrapper) as the screening sees it now: with
+  /// the labels discovered so far (rpvio-auto), without the planes found moving so far.
+  FeatureFrame screenedNow(const FeatureFrame& frame) const;
+  /// A frame to the bootstrapper while not initialized; on an initialization, the window
+  /// started and the poses it gives appended to `states` (a late one's frames since tracked).
+  void bootstrap(const FeatureFrame& frame, const std::vector<ImuSample>& imu_since_previous,
+                 std::vector<StateEstimate>& states);
   /// A frame (screened) on the initialized window: its pose, or none when the window is reset.
   std::optional<StateEstimate> track(const FeatureFrame& frame,
                                      const std::vector<ImuSample>& imu_since_previous);

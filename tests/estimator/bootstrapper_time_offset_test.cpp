@@ -23,8 +23,9 @@ struct Start {
   std::string note;
   double time_offset = 0;
   double newest_keyframe_t = -1;
-  // The frames to be tracked on the window at once: times and their first and last IMU samples.
-  std::vector<std::array<double, 3>> frames_after;
+  // The frames to be tracked on the window at once: times, their first and last IMU samples,
+  // their features.
+  std::vector<std::array<double, 4>> frames_after;
 };
 
 bool endsWith(const std::string& s, const std::string& end) {
@@ -59,7 +60,8 @@ Start start(double blank_t = -1, Bootstrapper::FrameScreen screen = {}) {
       out.newest_keyframe_t = window->keyframes.back().features.t;
       for (const auto& [later, samples] : window->frames_after)
         out.frames_after.push_back({later.t, samples.empty() ? NAN : samples.front().t,
-                                    samples.empty() ? NAN : samples.back().t});
+                                    samples.empty() ? NAN : samples.back().t,
+                                    static_cast<double>(later.features.size())});
       break;
     }
   }
@@ -109,7 +111,8 @@ TEST(BootstrapperTimeOffset, WhenNoLongerWindowInitializesTheUndecidedOneIsTaken
   EXPECT_EQ(s.frames_after.size(),
             static_cast<size_t>(std::lround((s.initialized_at - s.newest_keyframe_t) / 0.05)));
   double previous_t = s.newest_keyframe_t;
-  for (const auto& [t, first_sample, last_sample] : s.frames_after) {
+  for (const auto& [t, first_sample, last_sample, features] : s.frames_after) {
+    EXPECT_GT(features, 20) << t;  // as given: the screen the initializers see is not applied
     EXPECT_NEAR(t - previous_t, 0.05, 1e-6);
     // Its samples as given (the IMU clock is 30 ms ahead; 200 Hz).
     EXPECT_NEAR(first_sample, previous_t + 0.03, 0.006);

@@ -184,14 +184,12 @@ RunResult run(HomographyPlanes homography, double duration, const Revisit* revis
     const PlaneEstimates planes_before = estimator.planes();
     const size_t covariances_before = estimator.covarianceUpdates();
     const auto states = estimator.addFrame(frame, samples);
-    const rpvio::StateEstimate* state = states.empty() ? nullptr : &states.back();
     result.frames_finishing_keyframe_work += estimator.lastReport().finished_keyframe_work;
     if (estimator.covarianceUpdates() > covariances_before) {
       ++result.frames_with_covariances;
       result.covariances_in_keyframe_frame += !estimator.lastReport().finished_keyframe_work;
     }
-    if (!state) continue;
-    result.keyframes += state->keyframe;
+    if (states.empty()) continue;
     std::map<int, size_t> recently_seen;
     for (const Landmark& l : landmarks) recently_seen[l.plane] += l.last_seen >= t - 3.5;
     for (const auto& [label, e] : estimator.planes()) {
@@ -203,13 +201,16 @@ RunResult run(HomographyPlanes homography, double duration, const Revisit* revis
           std::abs(e.distance[0] - before->second.distance[0]);
       result.largest_move_without_factors = std::max(result.largest_move_without_factors, move);
     }
-    estimated.emplace_back(state->pose[0], state->pose[1], state->pose[2]);
-    const Eigen::Quaterniond q(state->pose[6], state->pose[3], state->pose[4], state->pose[5]);
-    result.tilt_error_deg.emplace_back(
-        t, tiltErrorDeg(q, Eigen::Quaterniond(sim.bodyPose(t).linear())));
+    for (const StateEstimate& state : states) {  // the frame's, or a late initialization's too
+      result.keyframes += state.keyframe;
+      estimated.emplace_back(state.pose[0], state.pose[1], state.pose[2]);
+      const Eigen::Quaterniond q(state.pose[6], state.pose[3], state.pose[4], state.pose[5]);
+      result.tilt_error_deg.emplace_back(
+          state.t, tiltErrorDeg(q, Eigen::Quaterniond(sim.bodyPose(state.t).linear())));
+      truth.push_back(sim.bodyPose(state.t).translation());
+    }
     for (const auto& [label, e] : estimator.planes())
       window_planes.push_back({label, Eigen::Vector3d(e.normal), e.distance[0]});
-    truth.push_back(sim.bodyPose(t).translation());
   }
   result.frames = times.size();
   result.poses = estimated.size();
