@@ -39,10 +39,7 @@ struct EstimatorOptions {
   double imu_gap_noise_inflation = 30;
   double min_saturated_accel = 11.8;  // m/s² (1.2 g: never a quantized value at rest)
   double min_saturated_gyro = 0.1;    // rad/s
-  // One step per solve: the window moves on with every frame. Up to eight changed the ATE by at
-  // most 0.6 mm on 47 of the paper suite's 48 runs (seeds 1, 2), and the p95 frame took
-  // 1.16-1.19x as long (docs/notes/2026-12-02-one-step-per-solve.md).
-  int max_iterations = 1;
+  int max_iterations = 8;
   // A frame whose second newest frame is not a keyframe (dropped after the solve) moves only the
   // two newest frames, the rest of the window, its depths and planes held: the window is solved
   // on keyframes only.
