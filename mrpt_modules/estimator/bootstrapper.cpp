@@ -43,21 +43,23 @@ std::optional<InitializedWindow> Bootstrapper::addFrame(
       imu_since_good_.clear();
     }
   }
-  if (time_offset_wait_until_ && frame.t > *time_offset_wait_until_) {
+  if (time_offset_wait_ && frame.t > time_offset_wait_->until) {
     // No initialization on the longer window in time: the offset stays as it is, and the window
     // it was undecided on initializes now, with the frames since tracked on it.
-    time_offset_wait_until_.reset();
+    InitializedWindow undecided = std::move(time_offset_wait_->window);
+    time_offset_wait_.reset();
     time_offset_estimated_ = true;
     next_attempt_t_ = -INFINITY;
     time_offset_note_ += ": no initialization on a longer window, not applied";
-    if (auto window = takeUndecidedWindow(frame, imu_since_previous)) return window;
+    if (auto window = takeUndecidedWindow(std::move(undecided), frame, imu_since_previous))
+      return window;
   }
   if (frame.features.empty()) buffer_.clear();  // no structure can span a blank frame
   buffer_.emplace_back(frame, imu_since_previous);
   // The newest init_window_frames frames, or more when they span less than init_window_s (a
   // camera faster than 20 Hz); time_offset_window_s while a time offset waits for that window,
   // after which the window shrinks back.
-  const bool waiting = time_offset_wait_until_.has_value();
+  const bool waiting = time_offset_wait_.has_value();
   const double keep_s = waiting ? options_.time_offset_window_s : options_.init_window_s;
   while (buffer_.size() > 2 && (waiting || buffer_.size() > options_.init_window_frames) &&
          buffer_.back().first.t - buffer_[1].first.t >= keep_s - 1e-6)
@@ -84,8 +86,7 @@ void Bootstrapper::restart(const std::vector<ImuSample>& imu_since_good,
   buffer_.clear();
   first_geometry_failure_t_ = -1;
   next_attempt_t_ = -INFINITY;
-  time_offset_wait_until_.reset();
-  undecided_window_.reset();
+  time_offset_wait_.reset();
   imu_since_good_ = imu_since_good;
   status_ = status_detail_ = status;
 }
@@ -128,10 +129,9 @@ std::optional<InitializedWindow> Bootstrapper::tryInitialize() {
       // changing angular rate decides (docs/notes/2026-11-28-time-offset-guard.md); if no
       // window initializes within time_offset_window_s more, the offset is not applied and this
       // window is taken then (takeUndecidedWindow).
-      if (!time_offset_wait_until_) {
-        time_offset_wait_until_ = frames.back().t + options_.time_offset_window_s;
-        undecided_window_ = window(frames, init);
-      }
+      if (!time_offset_wait_)
+        time_offset_wait_ =
+            TimeOffsetWait{frames.back().t + options_.time_offset_window_s, window(frames, init)};
       next_attempt_t_ = buffer_.front().first.t + options_.time_offset_window_s - 1e-6;
       status_ = "time offset undecided";
       char detail[80];
@@ -141,8 +141,7 @@ std::optional<InitializedWindow> Bootstrapper::tryInitialize() {
       return std::nullopt;
     }
     time_offset_estimated_ = true;
-    time_offset_wait_until_.reset();
-    undecided_window_.reset();
+    time_offset_wait_.reset();
     // A significant camera-IMU offset: the same window again, on the corrected frame times; kept
     // only if it initializes there.
     if (decision.td != 0) {
@@ -287,21 +286,20 @@ Bootstrapper::TimeOffsetDecision Bootstrapper::decideTimeOffset(const Initializa
 }
 
 std::optional<InitializedWindow> Bootstrapper::takeUndecidedWindow(
-    const FeatureFrame& frame, const std::vector<ImuSample>& imu_since_previous) {
-  std::optional<InitializedWindow> window = std::exchange(undecided_window_, std::nullopt);
-  if (!window) return std::nullopt;
-  const double newest = window->keyframes.back().features.t;
+    InitializedWindow window, const FeatureFrame& frame,
+    const std::vector<ImuSample>& imu_since_previous) {
+  const double newest = window.keyframes.back().features.t;
   // A blank frame since cleared the buffer: the frames after the window are not all there.
   if (buffer_.empty() || buffer_.front().first.t > newest) return std::nullopt;
   for (const auto& [buffered, imu] : buffer_)
-    if (buffered.t > newest) window->frames_after.emplace_back(buffered, imu);
-  window->frames_after.emplace_back(frame, imu_since_previous);
+    if (buffered.t > newest) window.frames_after.emplace_back(buffered, imu);
+  window.frames_after.emplace_back(frame, imu_since_previous);
   buffer_.clear();
   status_ = "tracking";
   char detail[120];
   std::snprintf(detail, sizeof detail,
                 "initialized on the window ending at t=%.2f s, %zu frames since tracked on it",
-                newest, window->frames_after.size());
+                newest, window.frames_after.size());
   status_detail_ = detail;
   return window;
 }

@@ -99,7 +99,8 @@ class Bootstrapper {
   /// At the end of an undecided offset's wait, before `frame` is buffered: the undecided window
   /// with the frames buffered since and `frame`, if the buffer still reaches back to it.
   std::optional<InitializedWindow> takeUndecidedWindow(
-      const FeatureFrame& frame, const std::vector<ImuSample>& imu_since_previous);
+      InitializedWindow window, const FeatureFrame& frame,
+      const std::vector<ImuSample>& imu_since_previous);
   /// The IMU samples of the buffer, in time order, once each.
   std::vector<ImuSample> bufferSamples() const;
   /// The body's orientation and velocity at time t by IMU dead reckoning from the last good state
@@ -129,10 +130,13 @@ class Bootstrapper {
   bool time_offset_estimated_ = false;
   static constexpr int kTimeOffsetAttempts = 3;  // windows tried on corrected times
   int time_offset_attempts_ = 0;
-  // While set, an undecided offset waits for a window of time_offset_window_s, until this time.
-  std::optional<double> time_offset_wait_until_;
-  // The initialization of the window whose offset was undecided: taken when the wait ends.
-  std::optional<InitializedWindow> undecided_window_;
+  // While set, an undecided offset waits for a window of time_offset_window_s, until `until`;
+  // `window` is the undecided window's initialization, taken when the wait ends.
+  struct TimeOffsetWait {
+    double until;
+    InitializedWindow window;
+  };
+  std::optional<TimeOffsetWait> time_offset_wait_;
   std::string time_offset_note_;
   double next_attempt_t_ = -INFINITY;  // after an expensive failure (init_retry_s)
   size_t expensive_failures_ = 0;
