@@ -4,16 +4,18 @@
 #include <Eigen/Dense>
 #include <chrono>
 #include <cmath>
+#include <map>
+#include <tuple>
 
 #include "mrpt_modules/estimator/batch_refinement.h"
 #include "mrpt_modules/estimator/estimator_problem.h"
 #include "mrpt_modules/factors/accel_bias_prior_factor.h"
 #include "mrpt_modules/factors/camera_height_factor.h"
-#include "mrpt_modules/factors/homography_factor.h"
 #include "mrpt_modules/factors/imu_factor.h"
 #include "mrpt_modules/factors/parameter_blocks.h"
 #include "mrpt_modules/factors/pose_manifold.h"
 #include "mrpt_modules/factors/reprojection_factor.h"
+#include "mrpt_modules/factors/stacked_homography_factor.h"
 #include "mrpt_modules/frontend/feature_tracker.h"
 #include "mrpt_modules/initialization/time_offset.h"
 
@@ -21,6 +23,11 @@ namespace rpvio {
 namespace {
 
 constexpr double kMinDepth = 0.1, kMaxDepth = 100;
+
+/// The homography factors' features by plane, anchor frame and frame: one block each
+/// (stacked_homography_factor.h).
+using HomographyGroups =
+    std::map<std::tuple<int, uint64_t, uint64_t>, std::vector<StackedHomographyResiduals::Feature>>;
 
 /// The noise densities and random walks of `noise` times `factor`.
 ImuNoise inflatedNoise(ImuNoise noise, double factor) {
@@ -91,6 +98,7 @@ void SlidingWindowEstimator::optimize(WindowSolve solve) {
   report_.features = 0;
   std::set<int> planes_with_factors;
   std::vector<double*> held;  // blocks the solve uses but does not move
+  HomographyGroups homographies;
   const std::set<int> constrained = planes_.constrained(features_);
   for (auto& [id, track] : features_.tracks()) {
     if (!inUse(track)) continue;
@@ -108,12 +116,17 @@ void SlidingWindowEstimator::optimize(WindowSolve solve) {
           ReprojectionResidual::create(anchor.normalized, o.normalized, weight),
           &solve_problem.loss, pose_of[anchor.frame], pose_of[o.frame], mount_, track.inv_depth);
       if (plane)
-        problem.AddResidualBlock(
-            HomographyResidual::create(anchor.normalized, o.normalized, weight),
-            &solve_problem.loss, pose_of[anchor.frame], pose_of[o.frame], mount_, plane->normal,
-            plane->distance);
+        homographies[{track.plane_id, anchor.frame, o.frame}].push_back(
+            {anchor.normalized, o.normalized});
     }
     if (motion_only && track_added) held.push_back(track.inv_depth);
+  }
+  for (auto& [key, features] : homographies) {
+    const auto& [plane_id, frame_i, frame_j] = key;
+    PlaneEstimate& plane = planes_.estimates().at(plane_id);
+    problem.AddResidualBlock(
+        new StackedHomographyResiduals(std::move(features), weight, &solve_problem.loss), nullptr,
+        pose_of[frame_i], pose_of[frame_j], mount_, plane.normal, plane.distance);
   }
   report_.planes = planes_with_factors.size();
   if (prior_ &&
@@ -261,6 +274,7 @@ void SlidingWindowEstimator::marginalizeOldest() {
   const double weight = options_.virtual_focal / options_.pixel_sigma;
   auto loss = std::make_shared<ceres::CauchyLoss>(options_.cauchy_scale);
   const std::set<int> constrained = planes_.constrained(features_);
+  HomographyGroups homographies;
   for (auto& [id, track] : features_.tracks()) {
     if (!inUse(track) || track.observations.front().frame != oldest.id) continue;
     const TrackObservation& anchor = track.observations.front();
@@ -270,14 +284,19 @@ void SlidingWindowEstimator::marginalizeOldest() {
       marginalizer.addFactor(std::unique_ptr<ceres::CostFunction>(ReprojectionResidual::create(
                                  anchor.normalized, o.normalized, weight)),
                              loss, {oldest.pose, pose_of[o.frame], mount_, track.inv_depth});
-      // The plane stays a state: what this keyframe's homographies knew of it stays in the prior.
       if (plane)
-        marginalizer.addFactor(
-            std::unique_ptr<ceres::CostFunction>(
-                HomographyResidual::create(anchor.normalized, o.normalized, weight)),
-            loss, {oldest.pose, pose_of[o.frame], mount_, plane->normal, plane->distance});
+        homographies[{track.plane_id, anchor.frame, o.frame}].push_back(
+            {anchor.normalized, o.normalized});
     }
     remove.insert(track.inv_depth);
+  }
+  // The planes stay states: what this keyframe's homographies knew of them stays in the prior.
+  for (auto& [key, features] : homographies) {
+    const auto& [plane_id, frame_i, frame_j] = key;
+    PlaneEstimate& plane = planes_.estimates().at(plane_id);
+    marginalizer.addFactor(
+        std::make_unique<StackedHomographyResiduals>(std::move(features), weight, loss.get()),
+        nullptr, {oldest.pose, pose_of[frame_j], mount_, plane.normal, plane.distance});
   }
   if (accel_bias_prior_) {
     marginalizer.addFactor(std::unique_ptr<ceres::CostFunction>(accelBiasPriorFactor()), nullptr,

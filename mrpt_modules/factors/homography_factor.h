@@ -36,6 +36,15 @@ Eigen::Matrix<T, 3, 3> planeInducedHomography(const RigidTransform<T>& W_ci,
   return cj_ci.R + cj_ci.t * n_ci.transpose() / d_ci;
 }
 
+/// The homography residual of the feature (u_i, u_j) and its Jacobians: the poses' and the mount's
+/// in their tangent spaces, the normal's w.r.t. its 3 ambient numbers (each skipped when nullptr).
+/// False where it is not defined (the ray of u_i parallel to the plane, or camera i on it).
+bool homographyInTangent(const TwoViewPoses& poses, const Eigen::Vector3d& n_w, double d_w,
+                         const Eigen::Vector2d& u_i, const Eigen::Vector2d& u_j, double sqrt_info,
+                         Eigen::Vector2d& residual, TangentJacobian* J_pose_i,
+                         TangentJacobian* J_pose_j, TangentJacobian* J_mount,
+                         Eigen::Matrix<double, 2, 3>* J_normal, Eigen::Vector2d* J_distance);
+
 /// The residual is the reprojection (reprojection_factor.h) of the point where the ray of u_i meets
 /// the plane — X_ci = ū_i / ρ with ρ = (n_ci·ū_i) / d_ci, since H_ji ū_i = ρ X_cj — so its
 /// Jacobians are the reprojection factor's, plus its inverse-depth column times ∂ρ/∂(pose_i,
@@ -43,7 +52,7 @@ Eigen::Matrix<T, 3, 3> planeInducedHomography(const RigidTransform<T>& W_ci,
 class HomographyResidual : public ceres::SizedCostFunction<2, 7, 7, 7, 3, 1> {
  public:
   HomographyResidual(const Eigen::Vector2d& u_i, const Eigen::Vector2d& u_j, double sqrt_info)
-      : u_i_(u_i), reprojection_(u_i, u_j, sqrt_info) {}
+      : u_i_(u_i), u_j_(u_j), sqrt_info_(sqrt_info) {}
   /// The caller owns it.
   static ceres::CostFunction* create(const Eigen::Vector2d& u_i, const Eigen::Vector2d& u_j,
                                      double sqrt_info) {
@@ -53,8 +62,8 @@ class HomographyResidual : public ceres::SizedCostFunction<2, 7, 7, 7, 3, 1> {
                 double** jacobians) const override;
 
  private:
-  Eigen::Vector2d u_i_;
-  ReprojectionResidual reprojection_;  // evaluated at the plane's inverse depth
+  Eigen::Vector2d u_i_, u_j_;
+  double sqrt_info_;
 };
 
 }  // namespace rpvio

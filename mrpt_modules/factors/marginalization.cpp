@@ -6,6 +6,7 @@
 
 #include "mrpt_modules/factors/parameter_blocks.h"
 #include "mrpt_modules/factors/pose_manifold.h"
+#include "mrpt_modules/factors/robust_correction.h"
 #include "mrpt_modules/imu/so3.h"
 
 namespace rpvio {
@@ -148,19 +149,9 @@ std::shared_ptr<const MarginalizationPrior> Marginalizer::marginalize(
         J.middleCols(column_of[k], sizes[k]) = block_jacobians[k];
     }
     if (f->loss) {
-      // Ceres' robust corrector (Triggs et al.): the loss folded into residual and Jacobian.
-      const double sq = r.squaredNorm();
-      double rho[3];
-      f->loss->Evaluate(sq, rho);
-      const double sqrt_rho1 = std::sqrt(rho[1]);
-      double residual_scaling = sqrt_rho1, alpha_sq = 0;
-      if (sq > 0 && rho[2] > 0) {
-        const double alpha = 1 - std::sqrt(1 + 2 * sq * rho[2] / rho[1]);
-        residual_scaling = sqrt_rho1 / (1 - alpha);
-        alpha_sq = alpha / sq;
-      }
-      J = sqrt_rho1 * (J - alpha_sq * r * (r.transpose() * J));
-      r *= residual_scaling;
+      const RobustCorrection robust(*f->loss, r.squaredNorm());
+      robust.correctJacobian(r, J);
+      robust.correctResidual(r);
     }
     Eigen::MatrixXd JtJ(cols, cols);
     JtJ.setZero();

@@ -11,6 +11,23 @@
 
 namespace rpvio {
 
+using TangentJacobian = Eigen::Matrix<double, 2, 6>;  // of a 2-row residual, a pose's tangent
+
+/// The two body poses and the mount of a two-view residual, as rotations and positions.
+struct TwoViewPoses {
+  TwoViewPoses(const double* pose_i, const double* pose_j, const double* mount);
+  Eigen::Matrix3d Ri, Rj, Ric, Rcj_w;  // Rcj_w = (Rj Ric)ᵀ
+  Eigen::Vector3d Pi, Pj, tic;
+};
+
+/// The reprojection residual of u_i at inverse depth ρ into frame j and its Jacobians in the
+/// poses' tangent spaces (each skipped when nullptr).
+void reprojectionInTangent(const TwoViewPoses& poses, const Eigen::Vector2d& u_i,
+                           const Eigen::Vector2d& u_j, double sqrt_info, double rho,
+                           Eigen::Vector2d& residual, TangentJacobian* J_pose_i,
+                           TangentJacobian* J_pose_j, TangentJacobian* J_mount,
+                           Eigen::Vector2d* J_rho);
+
 class ReprojectionResidual : public ceres::SizedCostFunction<2, 7, 7, 7, 1> {
  public:
   ReprojectionResidual(const Eigen::Vector2d& u_i, const Eigen::Vector2d& u_j, double sqrt_info)
