@@ -7,6 +7,7 @@
 // and steps are those of one block per feature with the loss attached, without Ceres' per-block
 // work (its checks, its Schur updates) and with the poses' rotations computed once per pair.
 // Exact for losses with ρ'' ≤ 0 (Huber, soft L1, Cauchy, arctan), where ρ(s) ≥ ρ'(s) s.
+// Not evaluable (false) where any of its features is not (homographyInTangent).
 // Blocks: pose_i [7], pose_j [7], T_BC [7], plane normal [3], plane distance [1].
 #include <ceres/cost_function.h>
 #include <ceres/loss_function.h>
