@@ -63,10 +63,7 @@ bool HomographyResidual::Evaluate(double const* const* x, double* residuals,
     return false;
   Eigen::Map<Eigen::Vector2d>{residuals} = r;
   if (!jacobians) return true;
-  for (int k = 0; k < 3; ++k)
-    if (jacobians[k])
-      Eigen::Map<Eigen::Matrix<double, 2, 7, Eigen::RowMajor>>{jacobians[k]} =
-          tangentToAmbient<2>(J[k], x[k]);
+  writeAmbientPoseJacobians(J, x, jacobians);
   if (jacobians[3])
     Eigen::Map<Eigen::Matrix<double, 2, 3, Eigen::RowMajor>>{jacobians[3]} = J_normal;
   if (jacobians[4]) Eigen::Map<Eigen::Vector2d>{jacobians[4]} = J_distance;

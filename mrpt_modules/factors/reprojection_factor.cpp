@@ -60,6 +60,14 @@ void reprojectionInTangent(const TwoViewPoses& g, const Eigen::Vector2d& u_i,
   if (J_rho) *J_rho = reduce * (g.Rcj_w * g.Ri * g.Ric * (-X_ci / rho));  // d X_cj / d ρ
 }
 
+void writeAmbientPoseJacobians(const TangentJacobian (&J)[3], double const* const* x,
+                               double** jacobians) {
+  for (int k = 0; k < 3; ++k)
+    if (jacobians[k])
+      Eigen::Map<Eigen::Matrix<double, 2, 7, Eigen::RowMajor>>{jacobians[k]} =
+          tangentToAmbient<2>(J[k], x[k]);
+}
+
 bool ReprojectionResidual::Evaluate(double const* const* x, double* residuals,
                                     double** jacobians) const {
   const TwoViewPoses poses(x[0], x[1], x[2]);
@@ -72,10 +80,7 @@ bool ReprojectionResidual::Evaluate(double const* const* x, double* residuals,
   Eigen::Map<Eigen::Vector2d>{residuals} = r;
   if (!jacobians) return true;
   if (jacobians[3]) Eigen::Map<Eigen::Vector2d>{jacobians[3]} = J_rho;
-  for (int k = 0; k < 3; ++k)
-    if (jacobians[k])
-      Eigen::Map<Eigen::Matrix<double, 2, 7, Eigen::RowMajor>>{jacobians[k]} =
-          tangentToAmbient<2>(J[k], x[k]);
+  writeAmbientPoseJacobians(J, x, jacobians);
   return true;
 }
 

@@ -28,6 +28,11 @@ void reprojectionInTangent(const TwoViewPoses& poses, const Eigen::Vector2d& u_i
                            TangentJacobian* J_pose_j, TangentJacobian* J_mount,
                            Eigen::Vector2d* J_rho);
 
+/// Writes the tangent Jacobians J of a 2-row residual's pose blocks 0–2 (pose_i, pose_j, T_BC)
+/// into Ceres' ambient ones, for the blocks it wants (jacobians non-null).
+void writeAmbientPoseJacobians(const TangentJacobian (&J)[3], double const* const* x,
+                               double** jacobians);
+
 class ReprojectionResidual : public ceres::SizedCostFunction<2, 7, 7, 7, 1> {
  public:
   ReprojectionResidual(const Eigen::Vector2d& u_i, const Eigen::Vector2d& u_j, double sqrt_info)

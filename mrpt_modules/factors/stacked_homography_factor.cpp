@@ -19,7 +19,8 @@ StackedHomographyResiduals::StackedHomographyResiduals(std::vector<Feature> feat
 
 bool StackedHomographyResiduals::Evaluate(double const* const* x, double* residuals,
                                           double** jacobians) const {
-  using PoseRows = Eigen::Matrix<double, 2, kPoseSize, Eigen::RowMajor>;
+  using PoseRows = Eigen::Map<Eigen::Matrix<double, 2, kPoseSize, Eigen::RowMajor>>;
+  using NormalRows = Eigen::Map<Eigen::Matrix<double, 2, kPlaneNormalSize, Eigen::RowMajor>>;
   const TwoViewPoses poses(x[0], x[1], x[2]);
   const Eigen::Map<const Eigen::Vector3d> n_w(x[3]);
   const bool any = jacobians != nullptr;
@@ -42,11 +43,10 @@ bool StackedHomographyResiduals::Evaluate(double const* const* x, double* residu
       return false;
     if (loss_) {
       const RobustCorrection robust(*loss_, r.squaredNorm());
-      if (any) {
-        for (auto& block : J) robust.correctJacobian(r, block);
-        robust.correctJacobian(r, J_normal);
-        robust.correctJacobian(r, J_distance);
-      }
+      for (int k = 0; k < 3; ++k)
+        if (wanted(k)) robust.correctJacobian(r, J[k]);
+      if (wanted(3)) robust.correctJacobian(r, J_normal);
+      if (wanted(4)) robust.correctJacobian(r, J_distance);
       robust.correctResidual(r);
       cost_gap += robust.cost() - r.squaredNorm();
     }
@@ -54,18 +54,18 @@ bool StackedHomographyResiduals::Evaluate(double const* const* x, double* residu
     Eigen::Map<Eigen::Vector2d>{residuals + row} = r;
     if (!any) continue;
     for (int k = 0; k < 3; ++k)
-      if (jacobians[k]) Eigen::Map<PoseRows>{jacobians[k] + row* kPoseSize} = J[k] * lift[k];
-    if (jacobians[3])
-      Eigen::Map<Eigen::Matrix<double, 2, 3, Eigen::RowMajor>>{jacobians[3] + row* 3} = J_normal;
+      if (jacobians[k]) PoseRows(jacobians[k] + kPoseSize * row) = J[k] * lift[k];
+    if (jacobians[3]) NormalRows(jacobians[3] + kPlaneNormalSize * row) = J_normal;
     if (jacobians[4]) Eigen::Map<Eigen::Vector2d>{jacobians[4] + row} = J_distance;
   }
   if (!loss_) return true;
   const int last = num_residuals() - 1;
   residuals[last] = std::sqrt(std::max(0.0, cost_gap));
   if (!any) return true;
-  const int sizes[5] = {kPoseSize, kPoseSize, kPoseSize, kPlaneNormalSize, 1};
-  for (int k = 0; k < 5; ++k)
-    if (jacobians[k]) std::fill_n(jacobians[k] + last * sizes[k], sizes[k], 0.0);
+  for (int k = 0; k < 5; ++k) {
+    const int size = parameter_block_sizes()[k];
+    if (jacobians[k]) std::fill_n(jacobians[k] + last * size, size, 0.0);
+  }
   return true;
 }
 
