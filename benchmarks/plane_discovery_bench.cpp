@@ -1,7 +1,7 @@
 // Per-frame time of the plane discovery (rpvio-auto) on the feature frames of simulated 640x480
-// C4 frames tracked without masks (the argument: features per image, 150 by default, 250 in
-// rpvio-auto), with the simulator's camera rotations standing in for the gyroscope; the
-// front-end's time on the same frames is bench_frontend's BM_FrontendNoMasks.
+// C4 frames tracked without masks (the arguments: features per image, 150 by default, 250 in
+// rpvio-auto; adopt_young on or off), with the simulator's camera rotations standing in for the
+// gyroscope; the front-end's time on the same frames is bench_frontend's BM_FrontendNoMasks.
 // Run: build/bin/bench_plane_discovery --benchmark_repetitions=5
 // --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
@@ -55,6 +55,7 @@ void BM_PlaneDiscovery(benchmark::State& state) {
   const Recorded& r = recorded(static_cast<int>(state.range(0)));
   rpvio::PlaneDiscoveryOptions options;
   options.enabled = true;
+  options.adopt_young = state.range(1) != 0;
   std::vector<double> frame_seconds;
   size_t labelled = 0, frames = 0;
   for (auto _ : state) {
@@ -73,6 +74,11 @@ void BM_PlaneDiscovery(benchmark::State& state) {
   state.counters["median_s_per_frame"] = *middle;
   state.counters["labelled_per_frame"] = static_cast<double>(labelled) / frames;
 }
-BENCHMARK(BM_PlaneDiscovery)->Arg(150)->Arg(250)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_PlaneDiscovery)
+    ->Args({150, 1})
+    ->Args({250, 1})
+    ->Args({250, 0})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace

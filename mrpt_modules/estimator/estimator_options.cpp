@@ -62,6 +62,7 @@ PlaneDiscoveryOptions EstimatorOptions::planeDiscoveryOptions() const {
   o.max_planes = discover_max_planes;
   o.confirm_after = discover_confirm_after;
   o.reject_after = discover_reject_after;
+  o.adopt_young = discover_adopt_young;
   o.focal_px = virtual_focal;
   return o;
 }

@@ -149,7 +149,8 @@ struct EstimatorOptions {
   // at least discover_min_features, at most discover_plane_sigmas standard deviations of the
   // check's track noise (0: discover_plane_px alone). A plane found in discover_confirm_after
   // checks is static; one whose features mostly moved in discover_reject_after consecutive checks
-  // is rejected.
+  // is rejected. discover_adopt_young: tracks younger than discover_span_s join a confirmed
+  // plane they fit over the longest span they have.
   bool discover_planes = false;
   double discover_span_s = 0.3;
   double discover_min_parallax_px = 4;
@@ -160,6 +161,7 @@ struct EstimatorOptions {
   int discover_max_planes = 4;
   int discover_confirm_after = 3;
   int discover_reject_after = 3;
+  bool discover_adopt_young = true;
 
   template <class Visitor>
   void fields(Visitor& v) {
@@ -228,6 +230,7 @@ struct EstimatorOptions {
     RPVIO_OPTION(v, discover_max_planes);
     RPVIO_OPTION(v, discover_confirm_after);
     RPVIO_OPTION(v, discover_reject_after);
+    RPVIO_OPTION(v, discover_adopt_young);
   }
   void validate(const OptionsLoader& loader) const;
   ImuLinkOptions imuLinkOptions() const;

@@ -116,6 +116,31 @@ Eigen::Matrix3d refineRotation(const std::vector<BearingPair>& pairs,
   return correction;
 }
 
+/// t or −t: the one that puts the points in front, their inverse depths ρ = mᵀx, from
+/// (y × t) ρ = −(y × x), mostly positive.
+Eigen::Vector3d towardsScene(const std::vector<BearingPair>& pairs,
+                             const std::vector<size_t>& static_pairs, const Eigen::Vector3d& t) {
+  std::vector<double> inverse_depths;
+  for (size_t i : static_pairs) {
+    const Eigen::Vector3d y = pairs[i].k, yt = y.cross(t);
+    if (yt.squaredNorm() > 1e-18)
+      inverse_depths.push_back(-yt.dot(y.cross(pairs[i].rotated_j)) / yt.squaredNorm());
+  }
+  return inverse_depths.empty() || median(inverse_depths) >= 0 ? t : Eigen::Vector3d(-t);
+}
+
+/// The transfer error within which a feature lies on a plane: plane_px, or plane_sigmas σ of the
+/// static features' epipolar distances when smaller (σ of a zero-mean normal from its median
+/// absolute deviation: median / Φ⁻¹(3/4)).
+double planeLimit(const PlaneDiscoveryOptions& options,
+                  const std::vector<double>& epipolar_distances) {
+  constexpr double kMedianAbsoluteDeviationPerSigma = 0.6745;
+  const double limit = options.plane_px / options.focal_px;
+  if (options.plane_sigmas <= 0 || epipolar_distances.empty()) return limit;
+  return std::min(
+      limit, options.plane_sigmas * median(epipolar_distances) / kMedianAbsoluteDeviationPerSigma);
+}
+
 }  // namespace
 
 /// Least-squares m of (y × t)(xᵀ m) = −(y × x) over the pairs (three rows each).
@@ -140,6 +165,7 @@ PlaneDiscovery::CheckResult PlaneDiscovery::check(const FeatureFrame& j, const F
   CheckResult result;
   std::vector<int> ids;
   std::vector<BearingPair> pairs = bearingPairs(j, k, R_kj, &ids);
+  result.compared = ids;
   if (pairs.size() < options_.min_features) return result;
   // Rotation-compensated parallax, or the raw image motion when smaller: a still camera with a
   // biased gyroscope (EuRoC's: 0.08 rad/s, 11 px in 0.3 s) must not look like it translates.
@@ -178,22 +204,9 @@ PlaneDiscovery::CheckResult PlaneDiscovery::check(const FeatureFrame& j, const F
     }
   }
   if (2 * still.size() <= pairs.size()) return result;  // no consensus: nothing judged
-  // Points in front: the inverse depths ρ = mᵀx, from (y × t) ρ = −(y × x), mostly positive.
-  std::vector<double> inverse_depths;
-  for (size_t i : still) {
-    const Eigen::Vector3d y = pairs[i].k, yt = y.cross(*t);
-    if (yt.squaredNorm() > 1e-18)
-      inverse_depths.push_back(-yt.dot(y.cross(pairs[i].rotated_j)) / yt.squaredNorm());
-  }
-  result.t = inverse_depths.empty() || median(inverse_depths) >= 0 ? *t : Eigen::Vector3d(-*t);
+  result.t = towardsScene(pairs, still, *t);
   result.judged = true;
-
-  double plane_limit = options_.plane_px / options_.focal_px;
-  // σ of a zero-mean normal from its median absolute deviation: median / Φ⁻¹(3/4).
-  constexpr double kMedianAbsoluteDeviationPerSigma = 0.6745;
-  if (options_.plane_sigmas > 0)
-    plane_limit = std::min(plane_limit, options_.plane_sigmas * median(still_distances) /
-                                            kMedianAbsoluteDeviationPerSigma);
+  const double plane_limit = planeLimit(options_, still_distances);
   const auto members = [&](const Eigen::Vector3d& m) {
     std::vector<size_t> in;
     for (size_t i : still)
@@ -258,13 +271,14 @@ void PlaneDiscovery::update(const CheckResult& result, const FeatureFrame& frame
   // the check that labelled it, which is no newer than this one's). Segments whose compared
   // features mostly moved count a disagreement.
   const std::set<int> moving(result.moving.begin(), result.moving.end());
+  const std::set<int> compared(result.compared.begin(), result.compared.end());
   std::map<int, std::pair<int, int>> moving_of;  // segment → (moving, compared)
-  for (const TrackedFeature& f : frame.features)
-    if (const auto it = labels_.find(f.id); it != labels_.end()) {
-      it->second.static_in_last_check = !moving.count(f.id);
-      auto& [moved, compared] = moving_of[it->second.segment];
-      moved += moving.count(f.id) ? 1 : 0;
-      ++compared;
+  for (const int id : compared)
+    if (const auto it = labels_.find(id); it != labels_.end()) {
+      it->second.static_in_last_check = !moving.count(id);
+      auto& [moved, seen] = moving_of[it->second.segment];
+      moved += moving.count(id) ? 1 : 0;
+      ++seen;
     }
   for (const auto& [segment, counts] : moving_of) {
     Segment& s = segments_[segment];
@@ -300,10 +314,9 @@ void PlaneDiscovery::update(const CheckResult& result, const FeatureFrame& frame
   }
   // Compared features of a found segment that no longer fit it, and all features of rejected
   // segments, lose their label. Ended tracks keep theirs for the frames they were seen in.
-  std::set<int> on_found, compared;
+  std::set<int> on_found;
   for (const FoundPlane& plane : result.planes)
     on_found.insert(plane.features.begin(), plane.features.end());
-  for (const TrackedFeature& f : frame.features) compared.insert(f.id);
   for (auto it = labels_.begin(); it != labels_.end();) {
     const int id = it->first, segment = it->second.segment;
     const bool lost =
@@ -313,13 +326,91 @@ void PlaneDiscovery::update(const CheckResult& result, const FeatureFrame& frame
   }
 }
 
+void PlaneDiscovery::adoptYoungTracks(const FeatureFrame& k, const FeatureFrame& reference) {
+  std::set<int> judged, young;  // in the reference frame (judged by the check), and not
+  for (const TrackedFeature& f : reference.features) judged.insert(f.id);
+  for (const TrackedFeature& f : k.features)
+    if (!judged.count(f.id)) young.insert(f.id);
+  const auto& frames = history_.frames();
+  for (size_t i = 0; i + 1 < frames.size() && !young.empty(); ++i) {
+    std::set<int> born_here;  // the oldest frame of the history that holds them: the longest span
+    for (const TrackedFeature& f : frames[i].frame.features)
+      if (young.erase(f.id)) born_here.insert(f.id);
+    if (!born_here.empty())
+      adopt(frames[i].frame, k, history_.rotationFrom(frames[i]), judged, born_here);
+  }
+}
+
+void PlaneDiscovery::adopt(const FeatureFrame& j, const FeatureFrame& k,
+                           const Eigen::Matrix3d& R_kj, const std::set<int>& judged,
+                           const std::set<int>& young) {
+  std::vector<int> ids;
+  std::vector<BearingPair> pairs = bearingPairs(j, k, R_kj, &ids);
+  std::vector<size_t> labelled;  // on a confirmed segment, static in the last check
+  std::map<int, std::vector<size_t>> members;
+  for (size_t i = 0; i < pairs.size(); ++i)
+    if (const auto it = labels_.find(ids[i]);
+        judged.count(ids[i]) && it != labels_.end() && it->second.static_in_last_check) {
+      const Segment& s = segments_.at(it->second.segment);
+      if (!s.confirmed || s.rejected) continue;
+      labelled.push_back(i);
+      members[it->second.segment].push_back(i);
+    }
+  if (labelled.size() < options_.min_features) return;
+  const auto parallax_px = [&](const std::vector<size_t>& of) {
+    std::vector<double> flow;
+    for (size_t i : of) flow.push_back(parallax(pairs[i]));
+    return median(flow) * options_.focal_px;
+  };
+  if (parallax_px(labelled) < options_.min_parallax_px) return;
+  std::vector<BearingPair> static_pairs;
+  for (size_t i : labelled) static_pairs.push_back(pairs[i]);
+  Eigen::Vector3d t = translationDirection(static_pairs);
+  const Eigen::Matrix3d correction = refineRotation(pairs, labelled, t);
+  for (BearingPair& p : pairs) p.rotated_j = correction * p.rotated_j;
+  t = towardsScene(pairs, labelled, t);
+  std::vector<double> distances;
+  for (size_t i : labelled) distances.push_back(epipolarDistance(pairs[i], t));
+  const double epipolar_limit = options_.epipolar_px / options_.focal_px;
+  const double plane_limit = planeLimit(options_, distances);
+  std::vector<std::pair<int, Eigen::Vector3d>> planes;  // segment, m'
+  for (const auto& [segment, on_it] : members)
+    if (on_it.size() >= options_.min_features && parallax_px(on_it) >= options_.min_parallax_px)
+      if (const auto m = planeThroughPairs(pairs, on_it, t)) planes.push_back({segment, *m});
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    if (!young.count(ids[i])) continue;
+    const bool moves = epipolarDistance(pairs[i], t) >= epipolar_limit;
+    int best = 0;
+    double best_error = plane_limit;
+    for (const auto& [segment, m] : planes)
+      if (const double e = transferError(pairs[i], t, m); !moves && e < best_error) {
+        best = segment;
+        best_error = e;
+      }
+    // Judged again each frame, over a longer span: a label is dropped when its plane no longer
+    // fits (or the track moves), kept when its plane could not be judged here.
+    const auto label = labels_.find(ids[i]);
+    const bool own_plane_judged =
+        label != labels_.end() && std::any_of(planes.begin(), planes.end(), [&](const auto& p) {
+          return p.first == label->second.segment;
+        });
+    if (best != 0)
+      labels_[ids[i]] = {best, true, k.t};
+    else if (label != labels_.end() && (moves || own_plane_judged))
+      labels_.erase(label);
+  }
+}
+
 FeatureFrame PlaneDiscovery::label(const FeatureFrame& frame,
                                    const std::optional<Eigen::Quaterniond>& R_previous_current) {
   if (!options_.enabled) return FeatureFrame{frame.t, {}};
   history_.push(frame, R_previous_current);
   if (const auto* reference = history_.reference(options_.span_s)) {
     const CheckResult result = check(reference->frame, frame, history_.rotationFrom(*reference));
-    if (result.judged) update(result, frame);
+    if (result.judged) {
+      update(result, frame);
+      if (options_.adopt_young) adoptYoungTracks(frame, reference->frame);
+    }
   }
   history_.trim(options_.span_s);
   // Labels are kept for frames the initializer may still look at.

@@ -24,11 +24,19 @@
 //     else start a new segment. A segment becomes a static plane once found in confirm_after
 //     checks; it is rejected as moving once most of its features were off their epipolar lines
 //     in reject_after consecutive checks.
+//  4. Tracks younger than span_s (not in the reference frame) are judged against the confirmed
+//     segments over the longest span they have (adopt_young): frame k and the oldest frame j'
+//     holding them. t and the gyroscope's correction come from the segments' labelled features
+//     there; each segment with min_features of them and min_parallax_px (their median) gets its
+//     m' (step 2's least squares over them), and a young track within epipolar_px of its
+//     epipolar line and within the plane limit of a segment's m' joins the one it fits best
+//     (judged again every frame, over a longer span, until a check judges it as any track).
 // Discovered planes get labels from kFirstDiscoveredLabel on (mask labels are 8-bit): the map
 // tells their origin.
 #include <Eigen/Geometry>
 #include <map>
 #include <optional>
+#include <set>
 #include <unordered_map>
 #include <vector>
 
@@ -52,6 +60,7 @@ struct PlaneDiscoveryOptions {
   int reject_after = 3;        // consecutive checks with most of its features moving
   int iterations = 200;        // RANSAC samples per model
   int sample_neighbours = 12;  // a plane's samples: a feature and two of its nearest neighbours
+  bool adopt_young = true;     // step 4
   double focal_px = 460;       // pixel scale of the thresholds
 };
 
@@ -82,6 +91,7 @@ class PlaneDiscovery {
   struct CheckResult {
     bool judged = false;                          // enough parallax and a translation consensus
     Eigen::Vector3d t = Eigen::Vector3d::Zero();  // unit; points in front have mᵀx > 0
+    std::vector<int> compared;                    // ids seen in both frames
     std::vector<int> moving;                      // ids off their epipolar lines
     std::vector<FoundPlane> planes;               // largest first
   };
@@ -104,6 +114,11 @@ class PlaneDiscovery {
     double last_seen_t = 0;
   };
   void update(const CheckResult& result, const FeatureFrame& frame);
+  /// Step 4 for the features of k not in `reference`.
+  void adoptYoungTracks(const FeatureFrame& k, const FeatureFrame& reference);
+  /// Step 4 for `young`, seen in j and k, not before j; planes fitted over labelled `judged`.
+  void adopt(const FeatureFrame& j, const FeatureFrame& k, const Eigen::Matrix3d& R_kj,
+             const std::set<int>& judged, const std::set<int>& young);
 
   PlaneDiscoveryOptions options_;
   RotatedFrameHistory history_;

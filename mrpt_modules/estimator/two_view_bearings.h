@@ -54,6 +54,8 @@ class RotatedFrameHistory {
   Eigen::Matrix3d rotationFrom(const Past& j) const;
   /// Drops what a later reference(span_s) cannot return.
   void trim(double span_s);
+  /// Oldest first; the newest frame last.
+  const std::deque<Past>& frames() const { return frames_; }
 
  private:
   std::deque<Past> frames_;

@@ -2,11 +2,13 @@
 // solver against exact data; one check separating a wall and a floor (static) from a panel
 // driving towards the camera; relief just off the wall kept off it; over a run, a parked panel
 // accepted as a static plane and rejected once it starts moving; ended tracks keep their labels;
-// nothing labelled while the camera only turns.
+// young tracks join their plane before a check's span, static points off it do not; nothing
+// labelled while the camera only turns.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <map>
 #include <random>
 #include <set>
@@ -172,17 +174,29 @@ struct DiscoveryRun {
   std::vector<FeatureFrame> outputs;
 };
 DiscoveryRun run(double panel_starts, double duration = 2.0, bool translate = true,
-                 const std::set<int>& tracks_ending_at_1s = {}) {
+                 const std::set<int>& tracks_ending_at_1s = {},
+                 const std::vector<ScenePoint>& tracks_starting_at_1s = {},
+                 bool adopt_young = true) {
   DiscoveryRun r;
   PlaneDiscoveryOptions options;
   options.enabled = true;
+  options.adopt_young = adopt_young;
   r.discovery = PlaneDiscovery(options);
   std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0, 0.1 / 460);
   for (int k = 0; k <= duration * kRate; ++k) {
     const double t = k / kRate;
     FeatureFrame frame =
         frameAt(translate ? t : 0, Eigen::Vector3d(0, 0, -1.0), panel_starts, 0.1, rng);
     frame.t = t;
+    if (t >= 1.0 - 1e-9)
+      for (const ScenePoint& p : tracks_starting_at_1s)
+        if (const auto u = scene().project(t, p.at_t0)) {
+          TrackedFeature f;
+          f.id = p.id;
+          f.normalized = *u + Eigen::Vector2d(noise(rng), noise(rng));
+          frame.features.push_back(f);
+        }
     if (t >= 1.0)
       frame.features.erase(std::remove_if(frame.features.begin(), frame.features.end(),
                                           [&](const TrackedFeature& f) {
@@ -266,6 +280,57 @@ TEST(PlaneDiscovery, EndedTracksKeepTheirLabelsWhileTheirPlaneIsFoundAgain) {
   for (const TrackedFeature& f : r.discovery.labelled(unlabelled).features)
     ended_labelled_now += ending.count(f.id);
   EXPECT_EQ(ended_labelled_now, ended_labelled_then);
+}
+
+TEST(PlaneDiscovery, YoungTracksJoinTheirPlaneBeforeACheckSpanAndPointsOffItDoNot) {
+  // Tracks starting at 1 s: floor points between the floor's, and static clutter 2.6–3.4 m away
+  // (depths in a cycle of three: no ten of them on one plane). Adopted over a span with the
+  // plane's parallax p, a point whose inverse depth differs by δ from the plane's is p·δ/ρ off
+  // its homography: the clutter's differ by at least 25 % from the panel's and the wall's, at
+  // least 1 px at p = 4 px (min_parallax_px).
+  std::vector<ScenePoint> starting;
+  for (double x = -1.75; x <= 2.75; x += 0.5)
+    for (const double z : {2.25, 2.75, 3.25, 3.75, 4.75})  // not 4.25: on the panel's plane too
+      starting.push_back({20000 + int(starting.size()), kFloor, {x, 1.5, z}});
+  const size_t floor_points = starting.size();
+  for (double x = -2; x <= 3; x += 0.5)
+    for (const double y : {-1.25, 0.75})
+      starting.push_back(
+          {20000 + int(starting.size()), 0, {x, y, 2.6 + 0.4 * (starting.size() % 3)}});
+  const auto isStarting = [&](int id, int plane) {
+    return id >= 20000 && starting[id - 20000].plane == plane;
+  };
+  for (const bool adopt : {true, false}) {
+    SCOPED_TRACE(adopt ? "adopt_young" : "without adopt_young");
+    const DiscoveryRun r = run(/*panel_starts=*/10, 2.0, true, {}, starting, adopt);
+    std::map<int, int> votes;  // the floor's segment: the label most of its old points carry
+    for (const TrackedFeature& f : r.outputs[20].features)
+      if (f.id < 20000 && planeOf(f.id) == kFloor) ++votes[f.plane_id];
+    ASSERT_FALSE(votes.empty());
+    const int floor_segment = std::max_element(votes.begin(), votes.end(), [](auto& a, auto& b) {
+                                return a.second < b.second;
+                              })->first;
+    for (const FeatureFrame& f : r.outputs) {
+      for (const TrackedFeature& x : f.features)
+        EXPECT_FALSE(isStarting(x.id, 0)) << "clutter labelled at " << f.t;
+      if (f.t < 1.05 - 1e-9 || f.t > 1.25 + 1e-9) continue;
+      // Without adoption no check judges them before 1.3 s; with it they join the floor one
+      // frame in.
+      int visible = 0, joined = 0;
+      for (size_t i = 0; i < floor_points; ++i)
+        visible += scene().project(f.t, starting[i].at_t0).has_value();
+      for (const TrackedFeature& x : f.features)
+        if (isStarting(x.id, kFloor)) {
+          EXPECT_EQ(x.plane_id, floor_segment) << "at " << f.t;
+          ++joined;
+        }
+      if (adopt) {
+        EXPECT_GE(joined, 0.8 * visible) << "at " << f.t;
+      } else {
+        EXPECT_EQ(joined, 0) << "at " << f.t;
+      }
+    }
+  }
 }
 
 TEST(PlaneDiscovery, NothingIsLabelledWhileTheCameraOnlyTurns) {
