@@ -267,9 +267,10 @@ PlaneDiscovery::CheckResult PlaneDiscovery::check(const FeatureFrame& j, const F
 }
 
 void PlaneDiscovery::update(const CheckResult& result, const FeatureFrame& frame) {
-  // Every labelled feature still tracked was compared (it was tracked at the reference frame of
-  // the check that labelled it, which is no newer than this one's). Segments whose compared
-  // features mostly moved count a disagreement.
+  // Every feature a check labelled that is still tracked was compared (it was tracked at the
+  // reference frame of that check, which is no newer than this one's); young tracks adopted
+  // since (step 4) are not until they reach this check's reference frame. Segments whose
+  // compared features mostly moved count a disagreement.
   const std::set<int> moving(result.moving.begin(), result.moving.end());
   const std::set<int> compared(result.compared.begin(), result.compared.end());
   std::map<int, std::pair<int, int>> moving_of;  // segment → (moving, compared)
