@@ -383,11 +383,12 @@ void PlaneDiscovery::adopt(const FeatureFrame& j, const FeatureFrame& k,
     const bool moves = epipolarDistance(pairs[i], t) >= epipolar_limit;
     int best = 0;
     double best_error = plane_limit;
-    for (const auto& [segment, m] : planes)
-      if (const double e = transferError(pairs[i], t, m); !moves && e < best_error) {
-        best = segment;
-        best_error = e;
-      }
+    if (!moves)
+      for (const auto& [segment, m] : planes)
+        if (const double e = transferError(pairs[i], t, m); e < best_error) {
+          best = segment;
+          best_error = e;
+        }
     // Judged again each frame, over a longer span: a label is dropped when its plane no longer
     // fits (or the track moves), kept when its plane could not be judged here.
     const auto label = labels_.find(ids[i]);
