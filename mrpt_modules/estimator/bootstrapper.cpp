@@ -108,8 +108,13 @@ std::optional<InitializedWindow> Bootstrapper::tryInitialize() {
   InitializationResult init =
       last_good_ ? reinitializer_.tryInitialize(frames, imu, knownStart(frames[0].t))
                  : initializer_.tryInitialize(frames, imu);
-  if (!last_good_ && init.status == InitStatus::kGeometryFailed && options_.init_fallback &&
-      options_.initializer != InitializerMethod::kEssentialMatrix) {
+  // The fallback also takes a full window on which the planar initializer found no plane with
+  // the features and parallax for it: without masks a forward-moving camera groups few tracks
+  // into planes early on (docs/notes/2026-12-05-real-street-images.md).
+  const bool no_plane_pair = init.status == InitStatus::kTooFewPlaneFeatures ||
+                             init.status == InitStatus::kTooLittleParallax;
+  if (!last_good_ && (init.status == InitStatus::kGeometryFailed || no_plane_pair) &&
+      options_.init_fallback && options_.initializer != InitializerMethod::kEssentialMatrix) {
     if (first_geometry_failure_t_ < 0) first_geometry_failure_t_ = frames.back().t;
     if (frames.back().t - first_geometry_failure_t_ >= options_.init_fallback_after_s)
       init = fallback_initializer_.tryInitialize(frames, imu);

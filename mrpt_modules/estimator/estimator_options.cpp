@@ -63,6 +63,7 @@ PlaneDiscoveryOptions EstimatorOptions::planeDiscoveryOptions() const {
   o.confirm_after = discover_confirm_after;
   o.reject_after = discover_reject_after;
   o.adopt_young = discover_adopt_young;
+  o.static_points = discover_static_points;
   o.focal_px = virtual_focal;
   return o;
 }

@@ -104,8 +104,9 @@ struct EstimatorOptions {
   // (bundle adjustment diverges), the essential-matrix one (on the same, masked features) works.
   InitializerMethod reinitializer = InitializerMethod::kEssentialMatrix;
   // When the homography initializer's two-view geometry or structure fails (its bundle adjustment
-  // diverges on some windows, e.g. with an unknown 30 ms camera-IMU offset), the same window is
-  // tried with the essential-matrix method, same thresholds.
+  // diverges on some windows, e.g. with an unknown 30 ms camera-IMU offset), or it finds no plane
+  // with the features and parallax for it, the same window is tried with the essential-matrix
+  // method, same thresholds.
   bool init_fallback = true;
   double init_fallback_after_s = 0;  // ... once it has failed for this long (0: at once)
   // ... and the new window is placed in the old world by dead reckoning from the last good state
@@ -142,7 +143,8 @@ struct EstimatorOptions {
   double verify_moving_noise_ratio = 8;
   int verify_reject_after = 3;
   // Mode rpvio-auto: static planes are discovered among the features of the whole image
-  // (plane_discovery.h) and only their features are used; mask labels are ignored. Frames
+  // (plane_discovery.h) and only their features are used (discover_static_points: and the
+  // static ones off them); mask labels are ignored. Frames
   // discover_span_s apart with discover_min_parallax_px of rotation-compensated parallax are
   // compared; a feature farther than discover_epipolar_px (px at virtual_focal) from its epipolar
   // line moves; discover_plane_px is the transfer error within which a feature lies on a plane of
@@ -150,7 +152,8 @@ struct EstimatorOptions {
   // check's track noise (0: discover_plane_px alone). A plane found in discover_confirm_after
   // checks is static; one whose features mostly moved in discover_reject_after consecutive checks
   // is rejected. discover_adopt_young: tracks younger than discover_span_s join a confirmed
-  // plane they fit over the longest span they have.
+  // plane they fit over the longest span they have. discover_static_points: the features on no
+  // plane that were on their epipolar line when last compared are used too (reprojection only).
   bool discover_planes = false;
   double discover_span_s = 0.3;
   double discover_min_parallax_px = 4;
@@ -162,6 +165,7 @@ struct EstimatorOptions {
   int discover_confirm_after = 3;
   int discover_reject_after = 3;
   bool discover_adopt_young = true;
+  bool discover_static_points = false;
 
   template <class Visitor>
   void fields(Visitor& v) {
@@ -231,6 +235,7 @@ struct EstimatorOptions {
     RPVIO_OPTION(v, discover_confirm_after);
     RPVIO_OPTION(v, discover_reject_after);
     RPVIO_OPTION(v, discover_adopt_young);
+    RPVIO_OPTION(v, discover_static_points);
   }
   void validate(const OptionsLoader& loader) const;
   ImuLinkOptions imuLinkOptions() const;

@@ -13,6 +13,13 @@ namespace {
 // Labels of ended tracks are kept this long (s): longer than an initialization window.
 constexpr double kLabelMemoryS = 5;
 
+/// Drops the entries last seen before `t`.
+template <class Map>
+void forgetOlderThan(Map& entries, double t) {
+  for (auto it = entries.begin(); it != entries.end();)
+    it = it->second.last_seen_t < t ? entries.erase(it) : std::next(it);
+}
+
 /// Normalized-plane transfer error of a pair under y ~ x + t (mᵀ x).
 double transferError(const BearingPair& p, const Eigen::Vector3d& t, const Eigen::Vector3d& m) {
   const Eigen::Vector3d mapped = p.rotated_j + t * m.dot(p.rotated_j);
@@ -273,6 +280,7 @@ void PlaneDiscovery::update(const CheckResult& result, const FeatureFrame& frame
   // compared features mostly moved count a disagreement.
   const std::set<int> moving(result.moving.begin(), result.moving.end());
   const std::set<int> compared(result.compared.begin(), result.compared.end());
+  for (const int id : compared) judged_[id] = {!moving.count(id), frame.t};
   std::map<int, std::pair<int, int>> moving_of;  // segment → (moving, compared)
   for (const int id : compared)
     if (const auto it = labels_.find(id); it != labels_.end()) {
@@ -381,6 +389,7 @@ void PlaneDiscovery::adopt(const FeatureFrame& j, const FeatureFrame& k,
   for (size_t i = 0; i < pairs.size(); ++i) {
     if (!young.count(ids[i])) continue;
     const bool moves = epipolarDistance(pairs[i], t) >= epipolar_limit;
+    judged_[ids[i]] = {!moves, k.t};
     int best = 0;
     double best_error = plane_limit;
     if (!moves)
@@ -416,10 +425,12 @@ FeatureFrame PlaneDiscovery::label(const FeatureFrame& frame,
   }
   history_.trim(options_.span_s);
   // Labels are kept for frames the initializer may still look at.
-  for (const TrackedFeature& f : frame.features)
+  for (const TrackedFeature& f : frame.features) {
     if (const auto it = labels_.find(f.id); it != labels_.end()) it->second.last_seen_t = frame.t;
-  for (auto it = labels_.begin(); it != labels_.end();)
-    it = frame.t - it->second.last_seen_t > kLabelMemoryS ? labels_.erase(it) : std::next(it);
+    if (const auto it = judged_.find(f.id); it != judged_.end()) it->second.last_seen_t = frame.t;
+  }
+  forgetOlderThan(labels_, frame.t - kLabelMemoryS);
+  forgetOlderThan(judged_, frame.t - kLabelMemoryS);
   return labelled(frame);
 }
 
@@ -427,13 +438,17 @@ FeatureFrame PlaneDiscovery::labelled(const FeatureFrame& frame) const {
   FeatureFrame out;
   out.t = frame.t;
   for (const TrackedFeature& f : frame.features) {
-    const auto it = labels_.find(f.id);
-    if (it == labels_.end() || !it->second.static_in_last_check) continue;
-    const Segment& s = segments_.at(it->second.segment);
-    if (!s.confirmed || s.rejected) continue;
-    TrackedFeature on_plane = f;
-    on_plane.plane_id = it->second.segment;
-    out.features.push_back(on_plane);
+    TrackedFeature kept = f;
+    kept.plane_id = 0;
+    if (const auto it = labels_.find(f.id); it != labels_.end() && it->second.static_in_last_check)
+      if (const Segment& s = segments_.at(it->second.segment); s.confirmed && !s.rejected)
+        kept.plane_id = it->second.segment;
+    if (kept.plane_id == 0) {
+      const auto judged = judged_.find(f.id);
+      if (!options_.static_points || judged == judged_.end() || !judged->second.on_epipolar_line)
+        continue;
+    }
+    out.features.push_back(kept);
   }
   return out;
 }

@@ -31,6 +31,11 @@
 //     m' (step 2's least squares over them), and a young track within epipolar_px of its
 //     epipolar line and within the plane limit of a segment's m' joins the one it fits best
 //     (judged again every frame, over a longer span, until a check judges it as any track).
+//  5. With static_points, the features on no plane that were on their epipolar line the last time
+//     they were compared (in a check or step 4) are passed on too, with plane id 0: reprojection
+//     factors only, as in vins-mono. Without masks the planes a forward-moving camera can group
+//     hold few tracks (docs/notes/2026-12-05-real-street-images.md); the epipolar test still sets
+//     aside what moves across the scene's motion.
 // Discovered planes get labels from kFirstDiscoveredLabel on (mask labels are 8-bit): the map
 // tells their origin.
 #include <Eigen/Geometry>
@@ -61,6 +66,7 @@ struct PlaneDiscoveryOptions {
   int iterations = 200;        // RANSAC samples per model
   int sample_neighbours = 12;  // a plane's samples: a feature and two of its nearest neighbours
   bool adopt_young = true;     // step 4
+  bool static_points = false;  // step 5
   double focal_px = 460;       // pixel scale of the thresholds
 };
 
@@ -81,7 +87,8 @@ class PlaneDiscovery {
   FeatureFrame label(const FeatureFrame& frame,
                      const std::optional<Eigen::Quaterniond>& R_previous_current);
 
-  /// A frame given earlier with the labels known now (features not on a static plane dropped).
+  /// A frame given earlier with the labels known now (features not on a static plane dropped, or
+  /// with static_points those not judged static).
   FeatureFrame labelled(const FeatureFrame& frame) const;
 
   struct FoundPlane {
@@ -124,6 +131,11 @@ class PlaneDiscovery {
   RotatedFrameHistory history_;
   std::map<int, Segment> segments_;
   std::unordered_map<int, Label> labels_;  // feature id → its segment
+  struct Judgement {
+    bool on_epipolar_line = false;
+    double last_seen_t = 0;
+  };
+  std::unordered_map<int, Judgement> judged_;  // feature id → its last comparison (step 5)
   int next_id_ = kFirstDiscoveredLabel;
   std::vector<PlaneDiscoveryEvent> events_;
 };

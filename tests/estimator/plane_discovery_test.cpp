@@ -3,7 +3,8 @@
 // driving towards the camera; relief just off the wall kept off it; over a run, a parked panel
 // accepted as a static plane and rejected once it starts moving; ended tracks keep their labels;
 // young tracks join their plane before a check's span, static points off it do not; nothing
-// labelled while the camera only turns.
+// labelled while the camera only turns; with static_points, static points off the planes passed on
+// without a plane and the moving panel not.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -175,12 +176,13 @@ struct DiscoveryRun {
 };
 DiscoveryRun run(double panel_starts, double duration = 2.0, bool translate = true,
                  const std::set<int>& tracks_ending_at_1s = {},
-                 const std::vector<ScenePoint>& tracks_starting_at_1s = {},
-                 bool adopt_young = true) {
+                 const std::vector<ScenePoint>& tracks_starting_at_1s = {}, bool adopt_young = true,
+                 bool static_points = false) {
   DiscoveryRun r;
   PlaneDiscoveryOptions options;
   options.enabled = true;
   options.adopt_young = adopt_young;
+  options.static_points = static_points;
   r.discovery = PlaneDiscovery(options);
   std::mt19937 rng(7);
   std::normal_distribution<double> noise(0, 0.1 / 460);
@@ -331,6 +333,47 @@ TEST(PlaneDiscovery, YoungTracksJoinTheirPlaneBeforeACheckSpanAndPointsOffItDoNo
       }
     }
   }
+}
+
+TEST(PlaneDiscovery, StaticPointsOffThePlanesArePassedOnAndMostOfTheDrivingPanelIsNot) {
+  // Static clutter 2.6–3.4 m away from 1 s on (no ten of it on one plane), the panel driving off
+  // at 1 s: with static_points the clutter comes out with plane id 0 once compared; of the
+  // driving panel's points only those moving along their epipolar lines, which no two-view test
+  // sees, may (a quarter at most here), none on a plane.
+  std::vector<ScenePoint> clutter;
+  for (double x = -2; x <= 3; x += 0.5)
+    for (const double y : {-1.25, 0.75})
+      clutter.push_back({20000 + int(clutter.size()), 0, {x, y, 2.6 + 0.4 * (clutter.size() % 3)}});
+  const DiscoveryRun r = run(/*panel_starts=*/1.0, 2.0, true, {}, clutter, true, true);
+  for (const FeatureFrame& f : r.outputs) {
+    int clutter_out = 0, clutter_visible = 0, panel_out = 0, panel_visible = 0;
+    for (const ScenePoint& p : clutter)
+      clutter_visible += scene().project(f.t, p.at_t0).has_value();
+    for (const ScenePoint& p : scene().points())
+      if (p.plane == kPanel)
+        panel_visible += scene()
+                             .project(f.t, p.at_t0 + Eigen::Vector3d(0, 0, -std::max(0.0, f.t - 1)))
+                             .has_value();
+    for (const TrackedFeature& x : f.features) {
+      if (x.id >= 20000) {
+        EXPECT_EQ(x.plane_id, 0) << "clutter on a plane at " << f.t;
+        ++clutter_out;
+      } else if (planeOf(x.id) == kPanel && f.t > 1.1) {
+        EXPECT_EQ(x.plane_id, 0) << "the driving panel on a plane at " << f.t;
+        ++panel_out;
+      }
+    }
+    if (f.t > 1.1) {
+      EXPECT_LE(4 * panel_out, panel_visible) << "at " << f.t;
+    }
+    if (f.t >= 1.5) {
+      EXPECT_GE(clutter_out, 0.8 * clutter_visible) << "at " << f.t;
+    }
+  }
+  // Without static_points none of the clutter is passed on.
+  const DiscoveryRun without = run(1.0, 2.0, true, {}, clutter, true, false);
+  for (const FeatureFrame& f : without.outputs)
+    for (const TrackedFeature& x : f.features) EXPECT_LT(x.id, 20000);
 }
 
 TEST(PlaneDiscovery, NothingIsLabelledWhileTheCameraOnlyTurns) {
