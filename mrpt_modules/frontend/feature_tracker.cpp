@@ -289,6 +289,46 @@ std::vector<cv::Point2f> FeatureTracker::detectCorners(CornerDetector& detector,
   return corners;
 }
 
+std::vector<cv::Point2f> FeatureTracker::detectInSparseCells(const cv::Mat& image, cv::Mat& allowed,
+                                                             const std::vector<cv::Point2f>& points,
+                                                             int wanted, int level) {
+  const int side = options_.detection_cell_px;
+  const int columns = (image.cols + side - 1) / side, rows = (image.rows + side - 1) / side;
+  std::vector<int> in_cell(static_cast<size_t>(columns) * rows, 0);
+  for (const cv::Point2f& p : points) {
+    const int c = std::clamp(static_cast<int>(p.x) / side, 0, columns - 1);
+    const int r = std::clamp(static_cast<int>(p.y) / side, 0, rows - 1);
+    ++in_cell[static_cast<size_t>(r) * columns + c];
+    // The corners of the whole image's pass keep their neighbourhoods (kept tracks have theirs).
+    cv::circle(allowed, p, static_cast<int>(options_.min_distance), cv::Scalar(0), cv::FILLED);
+  }
+  // A cell starts on the detection level's pixel lattice, as the whole image does.
+  const int step = 1 << level;
+  std::vector<cv::Point2f> found;
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < columns && wanted > 0; ++c) {
+      const int missing =
+          options_.min_cell_features - in_cell[static_cast<size_t>(r) * columns + c];
+      if (missing <= 0) continue;
+      const cv::Rect cell = cv::Rect(c * side / step * step, r * side / step * step, side, side) &
+                            cv::Rect(0, 0, image.cols, image.rows);
+      if (cell.width < 2 * step || cell.height < 2 * step || cv::countNonZero(allowed(cell)) == 0)
+        continue;
+      const cv::Mat cell_allowed = allowed(cell);
+      for (cv::Point2f corner :
+           detectCorners(cell_detector_, image(cell), cell_allowed, std::min(missing, wanted),
+                         options_.min_distance, level)) {
+        corner += cv::Point2f(cell.tl());
+        found.push_back(corner);
+        --wanted;
+        // Corners of the next cells keep min_distance from it too.
+        cv::circle(allowed, corner, static_cast<int>(options_.min_distance), cv::Scalar(0),
+                   cv::FILLED);
+      }
+    }
+  return found;
+}
+
 cv::Mat& FeatureTracker::detectionMask(const cv::Mat& taken) {
   cv::Mat& allowed = allowed_;
   detectable_.copyTo(allowed);
@@ -438,6 +478,13 @@ FeatureFrame FeatureTracker::track(double t, const cv::Mat& raw_image, const cv:
     if (wanted > 0 && any_allowed) {
       auto found =
           detectCorners(detector_, image, allowed, wanted, options_.min_distance, level, &pyramid_);
+      corners.insert(corners.end(), found.begin(), found.end());
+      wanted -= static_cast<int>(found.size());
+    }
+    if (wanted > 0 && any_allowed && options_.detection_cell_px > 0) {
+      std::vector<cv::Point2f> points = corners;
+      for (const Track& tr : spaced) points.push_back(tr.pixel);
+      const auto found = detectInSparseCells(image, allowed, points, wanted, level);
       corners.insert(corners.end(), found.begin(), found.end());
     }
     if (!any_allowed && spaced.empty())

@@ -77,6 +77,12 @@ struct TrackerOptions {
   // with -1 on the coarsest level still kAutoDetectionWidth px wide (0 below 1280 px).
   int detection_level = -1;
   static constexpr int kAutoDetectionWidth = 640;
+  // The image is cut into square cells this many px wide (0: not): after the detection over the
+  // whole image, a cell holding fewer than min_cell_features tracks and corners gets corners of
+  // its own, the quality threshold relative to its own strongest corner. A street's asphalt has
+  // no corner within 1 % of a facade's strongest (docs/notes/2026-12-05-real-street-images.md).
+  int detection_cell_px = 0;
+  int min_cell_features = 4;
   // FeatureTrackerModule: decode and track the images on a second thread while the modules after
   // it work on earlier frames, up to frames_in_flight images ahead (the same outputs, that many
   // frames later on the bus; stats.csv's per-frame times then overlap).
@@ -106,6 +112,8 @@ struct TrackerOptions {
     RPVIO_OPTION(v, max_warp_scale);
     RPVIO_OPTION(v, local_warps);
     RPVIO_OPTION(v, detection_level);
+    RPVIO_OPTION(v, detection_cell_px);
+    RPVIO_OPTION(v, min_cell_features);
     RPVIO_OPTION(v, pipelined);
     RPVIO_OPTION(v, frames_in_flight);
   }
@@ -168,6 +176,11 @@ class FeatureTracker {
   std::vector<cv::Point2f> detectCorners(CornerDetector& detector, const cv::Mat& image,
                                          const cv::Mat& allowed, int wanted, double spacing,
                                          int level, const Pyramid* pyramid = nullptr) const;
+  /// detection_cell_px: corners for the cells holding fewer than min_cell_features of `points`
+  /// (kept tracks and new corners), where `allowed` and away from `points`, at most `wanted`.
+  std::vector<cv::Point2f> detectInSparseCells(const cv::Mat& image, cv::Mat& allowed,
+                                               const std::vector<cv::Point2f>& points, int wanted,
+                                               int level);
   void computeUniformRegions(const cv::Mat& mask);
   FeatureFrame publish(double t, double dt);
   Track newTrack(int label, cv::Point2f corner, cv::Point2f normalized, const cv::Mat& image);
@@ -180,6 +193,7 @@ class FeatureTracker {
   Pyramid previous_pyramid_, pyramid_;
   CornerDetector detector_;
   CornerDetector plane_detector_;  // on one dense plane's box (its own buffers: another size)
+  CornerDetector cell_detector_;   // on one sparse cell (detection_cell_px)
   std::vector<Track> tracks_;      // current frame
   std::vector<Track> previous_;    // previous frame (same ids where tracked)
   double previous_t_ = 0;

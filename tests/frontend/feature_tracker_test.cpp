@@ -146,6 +146,39 @@ TEST(FeatureTracker, DetectsSpacedCornersOnEveryPyramidLevel) {
   }
 }
 
+TEST(FeatureTracker, SparseCellsGetCornersOfTheirOwnUnderAStrongTexture) {
+  // Full contrast above, 5 % of it below (an asphalt under facades): the whole image's quality
+  // threshold (1 % of the strongest response, which grows with the contrast squared) leaves the
+  // lower half without corners; with detection_cell_px every cell there gets min_cell_features.
+  cv::Mat img = texture(2);
+  cv::Mat weak;
+  texture(3).convertTo(weak, CV_8U, 0.05, 128 * 0.95);
+  weak.rowRange(240, 480).copyTo(img.rowRange(240, 480));
+  const cv::Mat no_mask;
+  TrackerOptions options;
+  options.use_masks = false;
+  const auto below = [](const FeatureFrame& f, int from_row) {
+    return std::count_if(f.features.begin(), f.features.end(),
+                         [&](const TrackedFeature& x) { return x.pixel.y() >= from_row; });
+  };
+  const FeatureFrame whole = FeatureTracker(camera(), options).track(0.0, img, no_mask);
+  EXPECT_GT(whole.features.size(), 60u);
+  EXPECT_EQ(below(whole, 250), 0);
+  options.detection_cell_px = 160;  // 4 x 3 cells; the third row, 320–480, all weak
+  const FeatureFrame cells = FeatureTracker(camera(), options).track(0.0, img, no_mask);
+  for (int column = 0; column < 4; ++column) {
+    const int in_cell = std::count_if(cells.features.begin(), cells.features.end(), [&](auto& x) {
+      return x.pixel.y() >= 320 && static_cast<int>(x.pixel.x()) / 160 == column;
+    });
+    EXPECT_GE(in_cell, options.min_cell_features) << "cell column " << column;
+  }
+  // The upper half keeps what the whole image's pass found, and every corner its spacing.
+  EXPECT_EQ(cells.features.size() - below(cells, 240), whole.features.size());
+  for (size_t i = 0; i < cells.features.size(); ++i)
+    for (size_t j = 0; j < i; ++j)
+      EXPECT_GE((cells.features[j].pixel - cells.features[i].pixel).norm(), options.min_distance);
+}
+
 TEST(FeatureTracker, DetectionLevelOutOfRangeIsABadConfig) {
   test::TempDir dir;
   test::writeText(dir.file("tracker.ini"),
