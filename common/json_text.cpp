@@ -1,5 +1,7 @@
 #include "common/json_text.h"
 
+#include "common/sensor_types.h"
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -42,6 +44,10 @@ JsonObject& JsonObject::add(const std::string& key, std::string value) {
 
 JsonObject& JsonObject::number(const std::string& key, double value) {
   return add(key, formatNumber(value));
+}
+
+JsonObject& JsonObject::stamp(const std::string& key, double seconds) {
+  return add(key, std::isfinite(seconds) ? stampText(seconds) : "null");
 }
 
 JsonObject& JsonObject::integer(const std::string& key, long long value) {

@@ -20,6 +20,8 @@ class JsonObject {
   explicit JsonObject(int significant_digits = 6) : digits_(significant_digits) {}
 
   JsonObject& number(const std::string& key, double value);
+  /// A time stamp (s) with 9 decimals (stampText); not finite: null.
+  JsonObject& stamp(const std::string& key, double seconds);
   JsonObject& integer(const std::string& key, long long value);
   JsonObject& text(const std::string& key, const std::string& value);
   JsonObject& flag(const std::string& key, bool value);

@@ -64,6 +64,14 @@ struct Calibration {
       0.0;  // m, the camera's height above a flat ground (robots, cars); 0: unknown
 };
 
+/// A stamp in seconds for the output files, in full: "1403715273.262142976" (9 decimals, the
+/// nanoseconds of a rawlog's stamps), not "1.4e+09".
+inline std::string stampText(double t) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.9f", t);
+  return text;
+}
+
 /// A time in seconds for log lines, in full: "1403715273.262 s", not "1.4e+09 s".
 inline std::string timeText(double t) {
   char text[32];

@@ -13,6 +13,7 @@
 #include "common/atomic_file.h"
 #include "common/input_error.h"
 #include "common/input_file.h"
+#include "common/sensor_types.h"
 
 namespace rpvio {
 namespace {
@@ -74,8 +75,9 @@ void writePlanesYaml(const std::string& path, const std::vector<Plane>& planes) 
         writeList(out, std::vector<double>{p.polygon[k].x(), p.polygon[k].y(), p.polygon[k].z()});
       }
       out << "]\n    support_points: " << p.support.size()
-          << "\n    observations: " << p.observations << "\n    first_seen: " << p.first_seen
-          << "\n    last_seen: " << p.last_seen << "\n    mask_ids: ";
+          << "\n    observations: " << p.observations
+          << "\n    first_seen: " << stampText(p.first_seen)
+          << "\n    last_seen: " << stampText(p.last_seen) << "\n    mask_ids: ";
       writeList(out, p.mask_ids);
       out << "\n";
       if (p.discovered()) out << "    source: discovery\n";

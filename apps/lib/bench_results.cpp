@@ -158,7 +158,7 @@ std::string resultsJson(const BenchSetup& setup, const std::vector<BenchRun>& ru
                               .number("ate_rotation_deg", r.ate_rotation_deg)
                               .number("coverage", r.coverage)
                               .number("refined_ate_rmse", r.refined_ate_rmse)
-                              .number("initialized_at", r.initialized_at)
+                              .stamp("initialized_at", r.initialized_at)
                               .integer("resets", r.resets)
                               .number("frontend_ms_median", r.frontend_ms_median)
                               .number("frontend_ms_p95", r.frontend_ms_p95)

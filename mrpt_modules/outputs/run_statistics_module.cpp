@@ -11,6 +11,7 @@
 
 #include "common/atomic_file.h"
 #include "common/json_text.h"
+#include "common/sensor_types.h"
 #include "mrpt_modules/core/feature_frame.h"
 #include "planes_map/planes_map.h"
 
@@ -41,7 +42,7 @@ namespace {
 std::vector<JsonObject> resetCausesJson(const std::vector<ResetEvent>& resets) {
   std::vector<JsonObject> out;
   for (const ResetEvent& r : resets)
-    out.push_back(JsonObject().number("t", r.t).text("cause", r.cause));
+    out.push_back(JsonObject().stamp("t", r.t).text("cause", r.cause));
   return out;
 }
 
@@ -49,7 +50,7 @@ std::vector<JsonObject> planeRejectionsJson(const std::vector<PlaneRejection>& r
   std::vector<JsonObject> out;
   for (const PlaneRejection& r : rejections)
     out.push_back(
-        JsonObject().integer("plane", r.plane_id).number("t", r.t).number("error_px", r.error_px));
+        JsonObject().integer("plane", r.plane_id).stamp("t", r.t).number("error_px", r.error_px));
   return out;
 }
 
@@ -59,7 +60,7 @@ std::vector<JsonObject> discoveriesJson(const std::vector<PlaneDiscoveryEvent>& 
   std::vector<JsonObject> out;
   for (const PlaneDiscoveryEvent& e : events)
     if (e.accepted == accepted)
-      out.push_back(JsonObject().integer("plane", e.plane_id).number("t", e.t));
+      out.push_back(JsonObject().integer("plane", e.plane_id).stamp("t", e.t));
   return out;
 }
 
@@ -118,7 +119,7 @@ void RunStatisticsModule::write(double wall) const {
       processing_ms.push_back(frontend_ms.back() + optimization_ms.back());
       total_ms.push_back(load_ms.back() + processing_ms.back());
       camera_height_frames += report.ground_plane >= 0;
-      s << std::setprecision(6) << row.t << std::setprecision(3) << "," << load_ms.back() << ","
+      s << stampText(row.t) << std::setprecision(3) << "," << load_ms.back() << ","
         << frontend_ms.back() << "," << optimization_ms.back() << "," << total_ms.back() << ","
         << report.features << "," << report.planes << "," << report.state << "\n";
     }
@@ -134,7 +135,7 @@ void RunStatisticsModule::write(double wall) const {
       .text("input_error", end_.input_error)
       .integer("frames", static_cast<long long>(rows_.size()))
       .integer("poses", static_cast<long long>(poses_))
-      .number("initialized_at", e.initialized_at)
+      .stamp("initialized_at", e.initialized_at)
       .number("time_offset_s", e.time_offset_s)
       .text("time_offset_note", e.time_offset_note)
       .integer("resets", static_cast<long long>(e.resets.size()))

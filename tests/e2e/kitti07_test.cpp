@@ -3,9 +3,13 @@
 // imported with rpvio-import euroc, rpvio-slam in vins-mono and rpvio-auto, rpvio-eval with an
 // SE(3) alignment. Both keep the track from their first full initialization window on (coverage
 // at least 87 %, no reset) and rpvio-auto is within the 0.9 m and no worse than vins-mono.
+// The stamps of the outputs (stamps of 1.6e9 s) read back as the input's to the microsecond.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
 
 #include "tests/test_util.h"
 
@@ -62,6 +66,21 @@ TEST(Kitti07, RpvioAutoAndVinsMonoKeepTheTrackOnRealStreetImages) {
       0)
       << out;
   const Evaluated vins = run(dir, "vins-mono"), automatic = run(dir, "rpvio-auto");
+  // Every frame stamp of the EuRoC folder (ns) is a row of stats.csv, and initialized_at is one.
+  std::ifstream csv(kData + "/mav0/cam0/data.csv");
+  std::set<long long> input_us;
+  for (std::string line; std::getline(csv, line);)
+    if (!line.empty() && line[0] != '#') input_us.insert(std::llround(std::stoll(line) / 1e3));
+  ASSERT_EQ(input_us.size(), 160u);
+  std::ifstream stats(dir.file("rpvio-auto/stats.csv"));
+  std::string line;
+  std::getline(stats, line);  // header
+  std::set<long long> output_us;
+  while (std::getline(stats, line)) output_us.insert(std::llround(std::stod(line) * 1e6));
+  EXPECT_EQ(output_us, input_us);
+  const double initialized_at =
+      numberAfter(test::readFile(dir.file("rpvio-auto/summary.json")), "initialized_at");
+  EXPECT_TRUE(input_us.count(std::llround(initialized_at * 1e6))) << std::to_string(initialized_at);
   for (const Evaluated& e : {vins, automatic}) {
     EXPECT_GE(e.coverage, 0.87);
     EXPECT_EQ(e.resets, 0);
