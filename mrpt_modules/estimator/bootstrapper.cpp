@@ -84,7 +84,7 @@ void Bootstrapper::setGoodState(double t, const double* pose, const double* spee
 void Bootstrapper::restart(const std::vector<ImuSample>& imu_since_good,
                            const std::string& status) {
   buffer_.clear();
-  first_geometry_failure_t_ = -1;
+  first_fallback_cause_t_ = -1;
   next_attempt_t_ = -INFINITY;
   time_offset_wait_.reset();
   imu_since_good_ = imu_since_good;
@@ -115,8 +115,8 @@ std::optional<InitializedWindow> Bootstrapper::tryInitialize() {
                              init.status == InitStatus::kTooLittleParallax;
   if (!last_good_ && (init.status == InitStatus::kGeometryFailed || no_plane_pair) &&
       options_.init_fallback && options_.initializer != InitializerMethod::kEssentialMatrix) {
-    if (first_geometry_failure_t_ < 0) first_geometry_failure_t_ = frames.back().t;
-    if (frames.back().t - first_geometry_failure_t_ >= options_.init_fallback_after_s)
+    if (first_fallback_cause_t_ < 0) first_fallback_cause_t_ = frames.back().t;
+    if (frames.back().t - first_fallback_cause_t_ >= options_.init_fallback_after_s)
       init = fallback_initializer_.tryInitialize(frames, imu);
   }
   status_ = init.ok() ? "tracking" : toString(init.status);

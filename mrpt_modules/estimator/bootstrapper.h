@@ -140,7 +140,8 @@ class Bootstrapper {
   std::string time_offset_note_;
   double next_attempt_t_ = -INFINITY;  // after an expensive failure (init_retry_s)
   size_t expensive_failures_ = 0;
-  double first_geometry_failure_t_ = -1;   // of the configured initializer (for the fallback)
+  double first_fallback_cause_t_ = -1;     // the configured initializer failing in a way the
+                                           // fallback takes (init_fallback_after_s)
   std::optional<GoodState> last_good_;     // newest state reported; kept through a reset
   std::vector<ImuSample> imu_since_good_;  // from last_good_ on, while re-initializing
   std::string status_ = "collecting frames";

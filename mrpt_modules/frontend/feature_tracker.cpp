@@ -289,17 +289,20 @@ std::vector<cv::Point2f> FeatureTracker::detectCorners(CornerDetector& detector,
   return corners;
 }
 
-std::vector<cv::Point2f> FeatureTracker::detectInSparseCells(const cv::Mat& image, cv::Mat& allowed,
-                                                             const std::vector<cv::Point2f>& points,
-                                                             int wanted, int level) {
+std::vector<cv::Point2f> FeatureTracker::detectInSparseCells(
+    const cv::Mat& image, cv::Mat& allowed, const std::vector<cv::Point2f>& corners,
+    const std::vector<Track>& kept, int wanted, int level) {
   const int side = options_.detection_cell_px;
   const int columns = (image.cols + side - 1) / side, rows = (image.rows + side - 1) / side;
   std::vector<int> in_cell(static_cast<size_t>(columns) * rows, 0);
-  for (const cv::Point2f& p : points) {
+  const auto count = [&](const cv::Point2f& p) {
     const int c = std::clamp(static_cast<int>(p.x) / side, 0, columns - 1);
     const int r = std::clamp(static_cast<int>(p.y) / side, 0, rows - 1);
     ++in_cell[static_cast<size_t>(r) * columns + c];
-    // The corners of the whole image's pass keep their neighbourhoods (kept tracks have theirs).
+  };
+  for (const Track& tr : kept) count(tr.pixel);  // `allowed` already keeps their neighbourhoods
+  for (const cv::Point2f& p : corners) {
+    count(p);
     cv::circle(allowed, p, static_cast<int>(options_.min_distance), cv::Scalar(0), cv::FILLED);
   }
   // A cell starts on the detection level's pixel lattice, as the whole image does.
@@ -482,9 +485,7 @@ FeatureFrame FeatureTracker::track(double t, const cv::Mat& raw_image, const cv:
       wanted -= static_cast<int>(found.size());
     }
     if (wanted > 0 && any_allowed && options_.detection_cell_px > 0) {
-      std::vector<cv::Point2f> points = corners;
-      for (const Track& tr : spaced) points.push_back(tr.pixel);
-      const auto found = detectInSparseCells(image, allowed, points, wanted, level);
+      const auto found = detectInSparseCells(image, allowed, corners, spaced, wanted, level);
       corners.insert(corners.end(), found.begin(), found.end());
     }
     if (!any_allowed && spaced.empty())

@@ -176,10 +176,12 @@ class FeatureTracker {
   std::vector<cv::Point2f> detectCorners(CornerDetector& detector, const cv::Mat& image,
                                          const cv::Mat& allowed, int wanted, double spacing,
                                          int level, const Pyramid* pyramid = nullptr) const;
-  /// detection_cell_px: corners for the cells holding fewer than min_cell_features of `points`
-  /// (kept tracks and new corners), where `allowed` and away from `points`, at most `wanted`.
+  /// detection_cell_px: corners for the cells holding fewer than min_cell_features `kept` tracks
+  /// and `corners` (the whole image's pass), where `allowed` (which excludes the kept tracks'
+  /// neighbourhoods) and min_distance from the corners, at most `wanted`.
   std::vector<cv::Point2f> detectInSparseCells(const cv::Mat& image, cv::Mat& allowed,
-                                               const std::vector<cv::Point2f>& points, int wanted,
+                                               const std::vector<cv::Point2f>& corners,
+                                               const std::vector<Track>& kept, int wanted,
                                                int level);
   void computeUniformRegions(const cv::Mat& mask);
   FeatureFrame publish(double t, double dt);

@@ -11,6 +11,7 @@
 #include <set>
 #include <sstream>
 
+#include "common/json_text.h"
 #include "tests/test_util.h"
 
 namespace rpvio {
@@ -22,13 +23,6 @@ struct Evaluated {
   double coverage = 0, ate = 0;
   int resets = -1;
 };
-
-/// The first number after `key` in a JSON text (NaN when absent).
-double numberAfter(const std::string& text, const std::string& key, size_t from = 0) {
-  const size_t at = text.find("\"" + key + "\":", from);
-  if (at == std::string::npos) return NAN;
-  return std::stod(text.substr(text.find(':', at) + 1));
-}
 
 Evaluated run(const test::TempDir& dir, const std::string& mode) {
   std::string out;
@@ -48,9 +42,9 @@ Evaluated run(const test::TempDir& dir, const std::string& mode) {
   const std::string eval = test::readFile(result + "/eval.json");
   const std::string summary = test::readFile(result + "/summary.json");
   Evaluated e;
-  e.coverage = numberAfter(eval, "coverage");
-  e.ate = numberAfter(eval, "rmse", eval.find("\"ate\""));
-  e.resets = static_cast<int>(numberAfter(summary, "resets"));
+  e.coverage = jsonNumber(eval, "coverage");
+  e.ate = jsonNumber(eval.substr(eval.find("\"ate\"")), "rmse");
+  e.resets = static_cast<int>(jsonNumber(summary, "resets"));
   std::printf("%s on kitti07_vio: coverage %.1f %%, ATE %.3f m, %d resets\n", mode.c_str(),
               100 * e.coverage, e.ate, e.resets);
   return e;
@@ -79,7 +73,7 @@ TEST(Kitti07, RpvioAutoAndVinsMonoKeepTheTrackOnRealStreetImages) {
   while (std::getline(stats, line)) output_us.insert(std::llround(std::stod(line) * 1e6));
   EXPECT_EQ(output_us, input_us);
   const double initialized_at =
-      numberAfter(test::readFile(dir.file("rpvio-auto/summary.json")), "initialized_at");
+      jsonNumber(test::readFile(dir.file("rpvio-auto/summary.json")), "initialized_at");
   EXPECT_TRUE(input_us.count(std::llround(initialized_at * 1e6))) << std::to_string(initialized_at);
   for (const Evaluated& e : {vins, automatic}) {
     EXPECT_GE(e.coverage, 0.87);

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "mrpt_modules/estimator/bootstrapper.h"
+#include "tests/estimator/imu_since.h"
 #include "tests/initialization/exact_window.h"
 
 namespace rpvio {
@@ -32,8 +33,7 @@ Outcome feed(bool init_fallback) {
   Outcome out;
   size_t next = 0;
   for (const FeatureFrame& frame : w.frames) {
-    std::vector<ImuSample> since_previous;
-    for (; next < imu.size() && imu[next].t <= frame.t; ++next) since_previous.push_back(imu[next]);
+    const std::vector<ImuSample> since_previous = test::imuUpTo(imu, next, frame.t);
     if (bootstrapper.addFrame(frame, since_previous) && out.initialized_after < 0)
       out.initialized_after = frame.t - w.frames.front().t;
   }

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "mrpt_modules/estimator/bootstrapper.h"
+#include "tests/estimator/imu_since.h"
 #include "tests/initialization/exact_window.h"
 
 namespace rpvio {
@@ -31,8 +32,7 @@ Attempts feed(double init_retry_s) {
   Attempts out;
   size_t next = 0;
   for (const FeatureFrame& frame : w.frames) {
-    std::vector<ImuSample> since_previous;
-    for (; next < imu.size() && imu[next].t <= frame.t; ++next) since_previous.push_back(imu[next]);
+    const std::vector<ImuSample> since_previous = test::imuUpTo(imu, next, frame.t);
     out.initialized |= bootstrapper.addFrame(frame, since_previous).has_value();
   }
   out.expensive_failures = bootstrapper.expensiveFailures();

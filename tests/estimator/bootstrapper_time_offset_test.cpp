@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "mrpt_modules/estimator/bootstrapper.h"
+#include "tests/estimator/imu_since.h"
 #include "tests/initialization/exact_window.h"
 
 namespace rpvio {
@@ -48,8 +49,7 @@ Start start(double blank_t = -1, Bootstrapper::FrameScreen screen = {}) {
   Start out;
   size_t next = 0;
   for (FeatureFrame frame : w.frames) {
-    std::vector<ImuSample> since_previous;
-    for (; next < imu.size() && imu[next].t <= frame.t; ++next) since_previous.push_back(imu[next]);
+    const std::vector<ImuSample> since_previous = test::imuUpTo(imu, next, frame.t);
     if (std::abs(frame.t - blank_t) < 0.025) frame.features.clear();
     frame.t -= 0.03;  // the camera's stamps: t_imu = t_frame + 0.03
     const auto window = bootstrapper.addFrame(frame, since_previous);
