@@ -4,9 +4,19 @@
 #include <ceres/ceres.h>
 #include <ceres/sphere_manifold.h>
 
+#include <map>
+#include <tuple>
+#include <vector>
+
 #include "mrpt_modules/factors/pose_manifold.h"
+#include "mrpt_modules/factors/stacked_homography_factor.h"
 
 namespace rpvio {
+
+/// The homography factors' features by plane, anchor frame and frame: one block each
+/// (stacked_homography_factor.h).
+using HomographyGroups =
+    std::map<std::tuple<int, uint64_t, uint64_t>, std::vector<StackedHomographyResiduals::Feature>>;
 
 struct EstimatorProblem {
   EstimatorProblem(double* mount, double cauchy_scale) : loss(cauchy_scale), problem(options()) {

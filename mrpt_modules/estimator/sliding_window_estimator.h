@@ -26,6 +26,10 @@
 // reprojection factors; homography factors on no plane (vins-mono, mask-vins), the largest plane
 // (rpvio-single) or every plane (rpvio-multi). Failures (implausible biases, jumps, too long
 // without features) reset the estimator, which re-initializes; each reset is logged with its cause.
+//
+// Files: this one the window's life cycle (start, frames tracked, failure, reset); window_solve.cpp
+// the solves; window_keyframes.cpp the keyframe schedule, marginalization and what leaves to the
+// map; window_screening.cpp each frame's plane screening.
 #include <ceres/problem.h>
 #include <deque>
 #include <memory>
@@ -34,8 +38,6 @@
 #include <string>
 #include <vector>
 
-#include "mrpt_modules/estimator/ground_in_window.h"
-
 #include "common/sensor_types.h"
 #include "mrpt_modules/core/run_messages.h"
 #include "mrpt_modules/estimator/batch_refinement.h"
@@ -43,6 +45,7 @@
 #include "mrpt_modules/estimator/estimator_options.h"
 #include "mrpt_modules/estimator/estimator_types.h"
 #include "mrpt_modules/estimator/feature_manager.h"
+#include "mrpt_modules/estimator/ground_in_window.h"
 #include "mrpt_modules/estimator/map_sink.h"
 #include "mrpt_modules/estimator/plane_verifier.h"
 #include "mrpt_modules/estimator/window_planes.h"
