@@ -197,8 +197,10 @@ InitializedWindow Bootstrapper::window(const std::vector<FeatureFrame>& frames,
       f.speed_bias[6 + i] = init.bg[i];
     }
     if (c > 0)
-      for (size_t k = chosen[c - 1] + 1; k <= chosen[c]; ++k)
+      for (size_t k = chosen[c - 1] + 1; k <= chosen[c]; ++k) {
         appendSamples(f.imu, buffer_[k].second);
+        if (k < chosen[c]) f.skipped_t.push_back(frames[k].t);
+      }
     w.keyframes.push_back(std::move(f));
   }
   // The initializer's depths (camera of the feature's first frame in its window) as world points.

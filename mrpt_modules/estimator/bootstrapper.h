@@ -24,7 +24,8 @@ namespace rpvio {
 struct InitializedWindow {
   struct Keyframe {
     FeatureFrame features;
-    std::vector<ImuSample> imu;  // since the previous keyframe
+    std::vector<ImuSample> imu;     // since the previous keyframe
+    std::vector<double> skipped_t;  // the buffered frames between the previous keyframe and this
     double pose[7] = {0, 0, 0, 0, 0, 0, 1};
     double speed_bias[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
   };

@@ -112,6 +112,9 @@ struct EstimatorOptions {
   // ... and the new window is placed in the old world by dead reckoning from the last good state
   // when the reset was at most this long ago (else the trajectory continues in a new world).
   double max_reconnect_s = 20;
+  // At an initialization, a pose for every frame of its window, not only the newest: the
+  // keyframes as solved, the frames between them predicted by the IMU from the keyframe before.
+  bool publish_init_window = true;
   size_t init_window_frames = 41;  // frames kept while initializing (2 s at 20 Hz; more when
                                    // they span less than init_window_s)
   // Camera-IMU time offset, estimated once from the first initialization window's rotations
@@ -204,6 +207,7 @@ struct EstimatorOptions {
     RPVIO_OPTION(v, accel_bias_prior_sigma);
     RPVIO_OPTION(v, init_max_scale_sigma);
     RPVIO_OPTION(v, init_retry_s);
+    RPVIO_OPTION(v, publish_init_window);
     RPVIO_OPTION(v, init_window_frames);
     RPVIO_OPTION(v, init_fallback);
     RPVIO_OPTION(v, init_fallback_after_s);

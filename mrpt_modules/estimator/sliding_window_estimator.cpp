@@ -200,11 +200,7 @@ void SlidingWindowEstimator::bootstrap(const FeatureFrame& frame,
   startWindow(*init);
   if (late) forgetUnseenPlanes();
   report_.state = "tracking";
-  StateEstimate s;
-  s.t = window_.back()->features.t;  // corrected if the time offset was
-  std::copy(window_.back()->pose, window_.back()->pose + 7, s.pose);
-  s.keyframe = true;
-  states.push_back(s);
+  for (const StateEstimate& s : startedWindowStates(*init)) states.push_back(s);
   if (!late) return;
   // The late initialization's frames since its window, this one last. After a reset among them,
   // the rest go to the bootstrapper as new frames would (its dead reckoning needs their IMU).
@@ -216,6 +212,35 @@ void SlidingWindowEstimator::bootstrap(const FeatureFrame& frame,
     report_.finished_keyframe_work |= finishKeyframeWork();
     if (auto tracked = track(screenedNow(later), samples)) states.push_back(*tracked);
   }
+}
+
+std::vector<StateEstimate> SlidingWindowEstimator::startedWindowStates(
+    const InitializedWindow& init) const {
+  auto state = [](double t, const double* pose, bool keyframe) {
+    StateEstimate s;
+    s.t = t;
+    std::copy(pose, pose + 7, s.pose);
+    s.keyframe = keyframe;
+    return s;
+  };
+  std::vector<StateEstimate> states;
+  const size_t first = options_.publish_init_window ? 0 : window_.size() - 1;
+  for (size_t k = first; k < window_.size(); ++k) {  // window_[k] started from init.keyframes[k]
+    const Frame& keyframe = *window_[k];
+    states.push_back(state(keyframe.features.t, keyframe.pose, true));
+    if (k + 1 == window_.size()) break;
+    for (const double t : init.keyframes[k + 1].skipped_t) {
+      std::vector<ImuSample> samples;
+      for (const ImuSample& sample : window_[k + 1]->imu)
+        if (sample.t <= t) samples.push_back(sample);
+      const auto pre = imu_link_.preintegrate(samples, keyframe.features.t, t, keyframe.speed_bias);
+      if (!pre) continue;
+      double pose[7], speed_bias[9];
+      imu_link_.predict(keyframe.pose, keyframe.speed_bias, *pre, pose, speed_bias);
+      states.push_back(state(t, pose, false));
+    }
+  }
+  return states;
 }
 
 std::optional<StateEstimate> SlidingWindowEstimator::track(

@@ -133,6 +133,10 @@ class SlidingWindowEstimator {
   /// The window an initializer gave (the bootstrapper's), placed in the old world when it
   /// reconnects, then triangulated and optimized.
   void startWindow(const InitializedWindow& init);
+  /// The states of the window just started, oldest first: its keyframes and, with
+  /// publish_init_window, the frames between them (IMU-predicted); the newest keyframe only
+  /// without.
+  std::vector<StateEstimate> startedWindowStates(const InitializedWindow& init) const;
   /// A frame buffered earlier (as given to the bootstrapper) as the screening sees it now: with
   /// the labels discovered so far (rpvio-auto), without the planes found moving so far.
   FeatureFrame screenedNow(const FeatureFrame& frame) const;

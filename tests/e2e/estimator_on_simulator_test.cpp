@@ -19,9 +19,11 @@ namespace {
 struct SimulatorRun {
   eval::EvalResult trajectory;
   size_t resets = 0;
-  double first_pose_t = -1;  // time of the first estimated pose (−1: never initialized)
+  double first_pose_t = -1;    // time of the first estimated pose (−1: never initialized)
+  double initialized_at = -1;  // of the frame that initialized (the window's poses come with it)
   double path_length = 0;    // of the true trajectory, m
-  size_t tracked_frames = 0, camera_height_frames = 0;  // the latter with camera-height factors
+  size_t tracked_frames = 0, camera_height_frames = 0;  // frames with a state; of them, with
+                                                        // camera-height factors
   // Frames that were not keyframes (their second newest frame was dropped), and those of them
   // whose solve moved a plane the window already had.
   size_t between_keyframes = 0, between_keyframes_moving_planes = 0;
@@ -99,9 +101,12 @@ SimulatorRun runOnSimulator(int characters, double duration, const RunSetup& set
     gt.q = Eigen::Quaterniond(sim.state(t).R_wb);
     if (!truth.empty()) run.path_length += (gt.p - truth.back().p).norm();
     truth.push_back(gt);
-    if (!states.empty()) run.camera_height_frames += estimator.lastReport().ground_plane >= 0;
-    for (const StateEstimate& state : states) {  // the frame's, or a late initialization's too
+    if (!states.empty()) {
       ++run.tracked_frames;
+      run.camera_height_frames += estimator.lastReport().ground_plane >= 0;
+      if (run.initialized_at < 0) run.initialized_at = t;
+    }
+    for (const StateEstimate& state : states) {  // the frame's, or its initialization window's
       if (estimate.empty()) run.first_pose_t = state.t;
       StampedPose e;
       e.t = state.t;
@@ -147,8 +152,8 @@ TEST(EstimatorOnSimulator, PlanarModeInitializesAtTheTakeOffWithOneCharacter) {
   const SimulatorRun run = runOnSimulator(1, 3.0);
   const auto& r = run.trajectory;
   const size_t resets = run.resets;
-  const double first_pose_t = run.first_pose_t;
-  std::printf("C1 3 s: first pose at %.2f s, ATE RMSE %.3f m, resets %zu\n", first_pose_t,
+  const double first_pose_t = run.initialized_at;
+  std::printf("C1 3 s: initialized at %.2f s, ATE RMSE %.3f m, resets %zu\n", first_pose_t,
               r.ate.rmse, resets);
   EXPECT_GE(first_pose_t, 1.99);  // a 2 s window is needed
   EXPECT_LE(first_pose_t, 2.2);
@@ -162,10 +167,10 @@ TEST(EstimatorOnSimulator, PlanarModeInitializesAtThirtyHertz) {
   RunSetup setup;
   setup.camera_rate = 30;
   const SimulatorRun run = runOnSimulator(0, 3.0, setup);
-  std::printf("static 3 s at 30 Hz: first pose at %.2f s, ATE RMSE %.3f m\n", run.first_pose_t,
+  std::printf("static 3 s at 30 Hz: initialized at %.2f s, ATE RMSE %.3f m\n", run.initialized_at,
               run.trajectory.ate.rmse);
-  EXPECT_GE(run.first_pose_t, 1.99);
-  EXPECT_LE(run.first_pose_t, 2.2);
+  EXPECT_GE(run.initialized_at, 1.99);
+  EXPECT_LE(run.initialized_at, 2.2);
   EXPECT_LT(run.trajectory.ate.rmse, 0.05);
 }
 
@@ -236,10 +241,10 @@ TEST(EstimatorOnSimulator, AutoModeFindsItsPlanesAndTracksWithoutMasks) {
   RunSetup setup;
   setup.discover_planes = true;
   const SimulatorRun run = runOnSimulator(1, 20.0, setup);
-  std::printf("C1 20 s, rpvio-auto: first pose at %.2f s, ATE RMSE %.3f m, resets %zu\n",
-              run.first_pose_t, run.trajectory.ate.rmse, run.resets);
-  EXPECT_GE(run.first_pose_t, 2.49);  // a 2.5 s window
-  EXPECT_LE(run.first_pose_t, 3.0);
+  std::printf("C1 20 s, rpvio-auto: initialized at %.2f s, ATE RMSE %.3f m, resets %zu\n",
+              run.initialized_at, run.trajectory.ate.rmse, run.resets);
+  EXPECT_GE(run.initialized_at, 2.49);  // a 2.5 s window
+  EXPECT_LE(run.initialized_at, 3.0);
   // Measured 0.038 m (rpvio-single: 0.03–0.05 m; 0.044 m before discover_adopt_young, 0.082 m
   // before the plane test followed the tracks' noise, discover_plane_sigmas). Issue #34's target
   // on the 80 s sequences: 0.08 m.
