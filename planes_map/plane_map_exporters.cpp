@@ -3,9 +3,11 @@
 #include <mrpt/opengl/COpenGLScene.h>
 #include <mrpt/opengl/CSetOfTriangles.h>
 #include <octomap/OcTree.h>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
@@ -14,6 +16,7 @@
 #include "common/input_error.h"
 #include "common/input_file.h"
 #include "common/sensor_types.h"
+#include "common/text_table.h"
 
 namespace rpvio {
 namespace {
@@ -36,14 +39,21 @@ std::vector<double> numbersIn(const std::string& text, const std::string& path, 
     if (c == '[' || c == ']' || c == ',') c = ' ';
   std::istringstream ss(cleaned);
   std::vector<double> out;
-  for (std::string token; ss >> token;) {
-    char* end = nullptr;
-    const double x = std::strtod(token.c_str(), &end);
-    if (*end != '\0')
-      throw InputError(path, "line " + std::to_string(line), "not a number: " + token);
-    out.push_back(x);
-  }
+  for (std::string token; ss >> token;) out.push_back(parseFiniteNumber(token, path, line));
   return out;
+}
+
+/// `x` as an Int of at least `lowest`, or InputError naming the key (a cast of a number out of
+/// the type's range is undefined).
+template <typename Int>
+Int wholeNumber(double x, Int lowest, const std::string& key, const std::string& path, int line) {
+  // max() + 1 is a power of two, exact as a double.
+  if (!(x == std::floor(x) && x >= lowest &&
+        x < static_cast<double>(std::numeric_limits<Int>::max()) + 1))
+    throw InputError(path, "line " + std::to_string(line),
+                     "'" + key + "' needs whole numbers from " + std::to_string(lowest) + " to " +
+                         std::to_string(std::numeric_limits<Int>::max()));
+  return static_cast<Int>(x);
 }
 
 /// The triangles of a polygon fan (first vertex shared).
@@ -129,7 +139,7 @@ std::vector<Plane> readPlanesYaml(const std::string& path) {
                          "'" + key + "' needs " + std::to_string(n) + " numbers");
     };
     if (key == "id")
-      need(1), p.id = static_cast<int>(v[0]);
+      need(1), p.id = wholeNumber(v[0], std::numeric_limits<int>::min(), key, path, line);
     else if (key == "normal")
       need(3), p.normal = Eigen::Vector3d(v[0], v[1], v[2]);
     else if (key == "d")
@@ -141,13 +151,13 @@ std::vector<Plane> readPlanesYaml(const std::string& path) {
         throw InputError(path, "line " + std::to_string(line), "polygon needs xyz triples");
       for (size_t k = 0; k < v.size(); k += 3) p.polygon.emplace_back(v[k], v[k + 1], v[k + 2]);
     } else if (key == "observations")
-      need(1), p.observations = static_cast<size_t>(v[0]);
+      need(1), p.observations = wholeNumber(v[0], size_t{0}, key, path, line);
     else if (key == "first_seen")
       need(1), p.first_seen = v[0];
     else if (key == "last_seen")
       need(1), p.last_seen = v[0];
     else if (key == "mask_ids")
-      for (double m : v) p.mask_ids.insert(static_cast<int>(m));
+      for (double m : v) p.mask_ids.insert(wholeNumber(m, 0, key, path, line));
     else if (key == "motion_axis")
       need(3), p.motion.axis = Eigen::Vector3d(v[0], v[1], v[2]);
     else if (key == "motion_amplitude")

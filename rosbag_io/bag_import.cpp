@@ -20,6 +20,7 @@
 #include "rawlog_io/interleaved_writing.h"
 #include "rawlog_io/rawlog_writer.h"
 #include "rawlog_io/trajectory_io.h"
+#include "rosbag_io/bag_records.h"
 #include "rosbag_io/ros_image.h"
 #include "rosbag_io/stamps.h"
 
@@ -60,6 +61,27 @@ void requireTopic(const rosbag::Bag& bag, const std::string& path, const std::st
       throw InputError(path, "",
                        topic + " carries " + c->datatype + ", not " + type +
                            (other_type.empty() ? "" : " or " + other_type));
+}
+
+/// The message as a sensor_msgs/Image, its pixel array first checked to fit in the message:
+/// deserializing trusts the array's length (a damaged one allocated up to 4 GB).
+sensor_msgs::ImagePtr instantiateImage(const rosbag::MessageInstance& m, const std::string& path,
+                                       const std::string& where) {
+  if (!m.isType<sensor_msgs::Image>()) throw InputError(path, where, "not a sensor_msgs/Image");
+  std::vector<uint8_t> bytes(m.size());
+  ros::serialization::OStream out(bytes.data(), static_cast<uint32_t>(bytes.size()));
+  m.write(out);
+  ros::serialization::IStream in(bytes.data(), static_cast<uint32_t>(bytes.size()));
+  sensor_msgs::Image fields;  // all but the pixels
+  ros::serialization::deserialize(in, fields.header);
+  in >> fields.height >> fields.width >> fields.encoding >> fields.is_bigendian >> fields.step;
+  uint32_t pixel_bytes;
+  in >> pixel_bytes;
+  if (pixel_bytes > in.getLength())
+    throw InputError(path, where,
+                     "image data of " + std::to_string(pixel_bytes) + " bytes in a message of " +
+                         std::to_string(bytes.size()));
+  return m.instantiate<sensor_msgs::Image>();
 }
 
 /// Every sample of a sensor_msgs/Imu topic, stamps strictly increasing.
@@ -220,7 +242,11 @@ BagImportCounts importBag(const BagImportOptions& opt,
   const fs::path out_dir = existingOutputFolder(opt.output_rawlog);
   BagImportCounts counts;
   try {
-    rosbag::Bag bag(path, rosbag::bagmode::Read);
+    checkBagRecords(path);  // rosbag::Bag trusts every length and offset in the file
+    // Opened apart from constructing: when open() throws on a damaged bag, ~Bag still frees the
+    // connections it had read (a throwing constructor leaks them).
+    rosbag::Bag bag;
+    bag.open(path, rosbag::bagmode::Read);
     requireTopic(bag, path, opt.topics.image, "sensor_msgs/Image");
     requireTopic(bag, path, opt.topics.imu, "sensor_msgs/Imu");
     if (!opt.topics.mask.empty()) requireTopic(bag, path, opt.topics.mask, "sensor_msgs/Image");
@@ -278,8 +304,7 @@ BagImportCounts importBag(const BagImportOptions& opt,
       const bool is_image = m.getTopic() == opt.topics.image;
       const std::string where =
           m.getTopic() + " message " + std::to_string(is_image ? ++image_index : ++mask_index);
-      const auto msg = m.instantiate<sensor_msgs::Image>();
-      if (!msg) throw InputError(path, where, "not a sensor_msgs/Image");
+      const auto msg = instantiateImage(m, path, where);
       const ros::Time stamp = msg->header.stamp;
       if (is_image) {
         cv::Mat image = grayFromRosImage(*msg, path, where);

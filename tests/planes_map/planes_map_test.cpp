@@ -370,6 +370,30 @@ TEST(PlaneMapExporters, DiscoveredPlanesSaySoAndParseBack) {
   EXPECT_EQ(back[1].mask_ids, discovered.mask_ids);
 }
 
+// Found by tests/fuzz/planes_yaml_fuzz.cpp: an infinite mask id was cast to int (undefined).
+TEST(PlaneMapExporters, PlanesYamlRefusesNumbersNotFiniteOrNotWhole) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"    mask_ids: [1e999]", "line 4: not a finite number: '1e999'"},
+      {"    normal: [nan, 0, 1]", "line 4: not a finite number: 'nan'"},
+      {"    id: 3.5", "line 4: 'id' needs whole numbers from"},
+      {"    observations: -1", "line 4: 'observations' needs whole numbers from 0 to"},
+      {"    mask_ids: [3, 2147483648]",
+       "line 4: 'mask_ids' needs whole numbers from 0 to 2147483647"},
+  };
+  for (const auto& [text, expected] : cases) {
+    test::TempDir dir;
+    test::writeText(dir.file("planes.yaml"), "planes:\n  - id: 3\n    d: 1\n" + text + "\n");
+    try {
+      readPlanesYaml(dir.file("planes.yaml"));
+      ADD_FAILURE() << text << ": read";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(dir.file("planes.yaml") + ":" + expected),
+                std::string::npos)
+          << text << ": " << e.what();
+    }
+  }
+}
+
 TEST(PlaneMapExporters, FilesParseBackAndLoad) {
   size_t distinct = 0;
   const PlanesMap map = twoLaps(&distinct);

@@ -7,7 +7,10 @@
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/Imu.h>
 
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <functional>
 #include <opencv2/imgproc.hpp>
 
 #include "common/input_error.h"
@@ -378,6 +381,81 @@ TEST(BagImport, BadInputIsOneErrorAndNoOutput) {
   fs::resize_file(truncated.file("in.bag"), fs::file_size(truncated.file("in.bag")) / 2);
   const std::string cut = importError(options(truncated));
   EXPECT_NE(cut.find(truncated.file("in.bag")), std::string::npos) << cut;
+}
+
+uint32_t u32At(const std::string& bytes, size_t pos) {
+  uint32_t value;
+  std::memcpy(&value, bytes.data() + pos, 4);
+  return value;
+}
+
+void setU32(std::string& bytes, size_t pos, uint32_t value) {
+  std::memcpy(bytes.data() + pos, &value, 4);
+}
+
+/// Where rosbag::Bag starts reading the index: the file header's index_pos.
+size_t indexPos(const std::string& bag) {
+  uint64_t pos;
+  std::memcpy(&pos, bag.data() + bag.find("index_pos=") + 10, 8);
+  return pos;
+}
+
+// Found by tests/fuzz/rosbag_fuzz.cpp, or by reading rosbag::Bag, which trusts the bag's lengths
+// and offsets: each damage is one InputError naming the bag and the byte, before rosbag reads it.
+TEST(BagImport, DamagedRecordsAreOneErrorBeforeRosbagReadsThem) {
+  struct Case {
+    std::string what, expected;
+    std::function<void(std::string&)> damage;
+  };
+  const std::vector<Case> cases = {
+      // The connections read, then a throw out of rosbag::Bag's constructor leaked them.
+      {"cut in the chunk infos", "runs past the end",
+       [](std::string& bag) { bag.resize(bag.size() - 10); }},
+      // rosbag allocated the connection header's length (here 2 GB) before reading it.
+      {"connection header length", "connection header of 2147483647 bytes",
+       [](std::string& bag) {
+         const size_t at = indexPos(bag);
+         setU32(bag, at + 4 + u32At(bag, at), 0x7fffffff);
+       }},
+      // The uncompressed size a chunk claims was allocated (up to 4 GB).
+      {"chunk size", "chunk of more than 1 GiB",
+       [](std::string& bag) {
+         setU32(bag, bag.find(std::string("\x09\0\0\0size=", 9)) + 9, 0xfffffff0);
+       }},
+      // An index entry's offset was read in the decompressed chunk unchecked.
+      {"index entry offset", "a message (index entry) beyond the end",
+       [](std::string& bag) {
+         // The first index record follows the first chunk. Its header's last field is "ver",
+         // then come the data length and the entries (time, offset).
+         const size_t ver = bag.find("ver=", bag.find(std::string("op=\x04", 4)));
+         setU32(bag, ver + 4 + 4 + 4 + 8, 0x7fffffff);
+       }},
+  };
+  for (const Case& c : cases) {
+    test::TempDir dir;
+    writeBag(dir.file("in.bag"), "mono8", rosbag::compression::LZ4);
+    std::string bytes = test::readFile(dir.file("in.bag"));
+    c.damage(bytes);
+    std::ofstream(dir.file("in.bag"), std::ios::binary) << bytes;
+    const std::string error = importError(options(dir));
+    EXPECT_EQ(error.rfind(dir.file("in.bag") + ":", 0), 0u) << c.what << ": " << error;
+    EXPECT_NE(error.find("byte "), std::string::npos) << c.what << ": " << error;
+    EXPECT_NE(error.find(c.expected), std::string::npos) << c.what << ": " << error;
+  }
+}
+
+TEST(BagImport, ImageDataLongerThanItsMessageIsOneError) {
+  // Deserializing allocated the pixel array's length (here 4 GB) before finding it too long.
+  test::TempDir dir;
+  writeBag(dir.file("in.bag"), "mono8", rosbag::compression::Uncompressed);
+  std::string bytes = test::readFile(dir.file("in.bag"));
+  const std::string pixels = std::string("\0\x0c\0\0", 4) + std::string(4, '\xc8');  // 3072 x 200
+  setU32(bytes, bytes.find(pixels), 0xffffff00);
+  std::ofstream(dir.file("in.bag"), std::ios::binary) << bytes;
+  const std::string error = importError(options(dir));
+  EXPECT_NE(error.find("/cam0/image_raw message 1: image data of 4294967040 bytes in a message of"),
+            std::string::npos)
+      << error;
 }
 
 TEST(BagImport, PresetsCarryAUsableCalibration) {
