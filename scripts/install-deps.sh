@@ -5,7 +5,7 @@ set -eu
 
 PACKAGES="cmake g++ make pkg-config libmrpt-dev mrpt-apps libceres-dev libopencv-dev \
 liboctomap-dev libeigen3-dev libdeflate-dev libgoogle-perftools-dev libgtest-dev libgmock-dev libbenchmark-dev \
-librosbag-storage-dev libsensor-msgs-dev libnav-msgs-dev libroscpp-core-dev $*"
+librosbag-storage-dev libbz2-dev libsensor-msgs-dev libnav-msgs-dev libroscpp-core-dev $*"
 
 missing=""
 for pkg in $PACKAGES; do
