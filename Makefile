@@ -38,7 +38,7 @@ test-asan: deps
 
 # What CI runs besides `make test`: the tests of the input readers, front-end, planes map, IMU and
 # factors under ASan + UBSan (the whole suite under sanitizers does not fit CI's time).
-ASAN_QUICK_AREAS = rawlog_io rosbag_io import frontend planes_map imu factors
+ASAN_QUICK_AREAS = rawlog_io rosbag_io frontend planes_map imu factors
 test-asan-quick: deps
 	$(ASAN_CONFIGURE)
 	cmake --build build-asan -j$(JOBS) --target $(addprefix test_,$(ASAN_QUICK_AREAS))
