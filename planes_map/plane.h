@@ -11,6 +11,8 @@ namespace rpvio {
 
 /// Labels of discovered planes (rpvio-auto) start here, above the 8-bit mask labels.
 constexpr int kFirstDiscoveredLabel = 256;
+/// The label of the ground tracked by direct alignment (mrpt_modules/frontend/ground_tracks.h).
+constexpr int kGroundLabel = 1 << 20;
 
 struct Plane {
   int id = 0;                                                // stable map id

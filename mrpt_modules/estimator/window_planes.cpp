@@ -77,14 +77,18 @@ void WindowPlanes::choose(const FeatureManager& features, const std::set<int>* e
     return;
   }
   // Largest plane, with hysteresis: the current one stays while it keeps 70% of the best count.
+  // The ground's tracks (ground_tracks.h) have their factors besides: the homography of their
+  // plane is all they measure.
+  const bool ground = count.erase(kGroundLabel) > 0;
   int best = -1;
   size_t best_count = 0;
   for (const auto& [plane, n] : count)
     if (n > best_count) best = plane, best_count = n;
-  const int current = used_.empty() ? -1 : *used_.begin();
-  if (current > 0 && count.count(current) && count[current] >= 0.7 * best_count) return;
+  const int current = largest_;
+  if (!(current > 0 && count.count(current) && count[current] >= 0.7 * best_count)) largest_ = best;
   used_.clear();
-  if (best > 0) used_.insert(best);
+  if (largest_ > 0) used_.insert(largest_);
+  if (ground) used_.insert(kGroundLabel);
 }
 
 void WindowPlanes::initialize(const FeatureManager& features, const CameraPoseLookup& cameras,

@@ -65,6 +65,7 @@ class WindowPlanes {
   void clear() {
     planes_.clear();
     used_.clear();
+    largest_ = -1;
     fitted_visits_.clear();
   }
 
@@ -74,6 +75,7 @@ class WindowPlanes {
   HomographyPlanes which_;
   PlaneEstimates planes_;
   std::set<int> used_;   // labels whose features get homography factors
+  int largest_ = -1;     // with kLargest: the plane chosen as the largest
   uint64_t visits_ = 0;  // planes that entered the window so far (estimated or fitted)
   std::map<int, uint64_t> fitted_visits_;  // label → visit, of the last fittedObservations
 };

@@ -4,12 +4,34 @@
 #include <vector>
 
 #include "mrpt_modules/estimator/sliding_window_estimator.h"
+#include "planes_map/plane.h"
 
 namespace rpvio {
+namespace {
+
+/// The frame's features with (`ground` true) or without the ground's tracks (ground_tracks.h),
+/// which the screening passes as they are: the ground's alignment has already judged them.
+FeatureFrame groundTracks(const FeatureFrame& frame, bool ground) {
+  FeatureFrame part{frame.t, {}};
+  for (const TrackedFeature& f : frame.features)
+    if ((f.plane_id == kGroundLabel) == ground) part.features.push_back(f);
+  return part;
+}
+
+FeatureFrame withGroundTracks(FeatureFrame screened, const FeatureFrame& frame) {
+  const FeatureFrame ground = groundTracks(frame, true);
+  screened.features.insert(screened.features.end(), ground.features.begin(), ground.features.end());
+  return screened;
+}
+
+}  // namespace
 
 FeatureFrame SlidingWindowEstimator::screenedNow(const FeatureFrame& frame) const {
-  return plane_verifier_.withoutRejected(options_.discover_planes ? plane_discovery_.labelled(frame)
-                                                                  : frame);
+  const FeatureFrame others = groundTracks(frame, false);
+  return withGroundTracks(
+      plane_verifier_.withoutRejected(options_.discover_planes ? plane_discovery_.labelled(others)
+                                                               : others),
+      frame);
 }
 
 std::optional<Eigen::Quaterniond> SlidingWindowEstimator::rotationSincePreviousFrame(
@@ -43,8 +65,9 @@ FeatureFrame SlidingWindowEstimator::screenPlanes(const FeatureFrame& frame,
   const auto rotation = rotationSincePreviousFrame(frame.t, imu);
   const size_t known_rejections = plane_verifier_.rejections().size();
   const size_t known_discoveries = plane_discovery_.events().size();
-  FeatureFrame kept = options_.discover_planes ? plane_discovery_.label(frame, rotation) : frame;
-  kept = plane_verifier_.filter(kept, rotation);
+  const FeatureFrame others = groundTracks(frame, false);
+  FeatureFrame kept = options_.discover_planes ? plane_discovery_.label(others, rotation) : others;
+  kept = withGroundTracks(plane_verifier_.filter(kept, rotation), frame);
   std::vector<int> dropped;
   for (size_t i = known_rejections; i < plane_verifier_.rejections().size(); ++i)
     dropped.push_back(plane_verifier_.rejections()[i].plane_id);

@@ -55,10 +55,14 @@ void TrackerOptions::validate(const OptionsLoader& loader) const {
   loader.require(detection_level >= -1 && detection_level <= 3, "detection_level",
                  "must be 0 (full resolution) to 3, or -1 (by the image's width)");
   loader.require(frames_in_flight >= 1, "frames_in_flight", "must be at least 1");
+  loader.require(ground_features >= 0, "ground_features", "must be 0 (none) or positive");
 }
 
 FeatureTracker::FeatureTracker(const CameraIntrinsics& camera, const TrackerOptions& options)
-    : camera_(camera), options_(options) {}
+    : camera_(camera), options_(options) {
+  if (options_.ground_features > 0)
+    ground_.emplace(camera, GroundTrackOptions{options_.ground_features}, GroundAlignmentOptions{});
+}
 
 void FeatureTracker::undistort(std::vector<Track>& tracks) const {
   if (tracks.empty()) return;
@@ -386,7 +390,7 @@ FeatureFrame FeatureTracker::publish(double t, double dt) {
 }
 
 FeatureFrame FeatureTracker::track(double t, const cv::Mat& raw_image, const cv::Mat& raw_mask,
-                                   const Eigen::Matrix3d* R_cur_prev) {
+                                   const Eigen::Matrix3d* R_cur_prev, const Eigen::Vector3d* down) {
   const double dt = previous_pyramid_.empty() ? 0 : t - previous_t_;
   cv::Mat image = raw_image, mask = raw_mask;
   bool usable = true;
@@ -404,6 +408,9 @@ FeatureFrame FeatureTracker::track(double t, const cv::Mat& raw_image, const cv:
     previous_pyramid_.clear();
     plane_motions_.clear();
     last_rotation_.reset();
+    if (ground_)
+      ground_.emplace(camera_, GroundTrackOptions{options_.ground_features},
+                      GroundAlignmentOptions{});
     return FeatureFrame{t, {}};
   }
   if (options_.clahe) {
@@ -504,7 +511,12 @@ FeatureFrame FeatureTracker::track(double t, const cv::Mat& raw_image, const cv:
   tracks_ = spaced;
   std::swap(previous_pyramid_, pyramid_);
   previous_t_ = t;
-  return publish(t, dt);
+  FeatureFrame frame = publish(t, dt);
+  if (ground_) {
+    const auto ground = ground_->track(t, image, R_cur_prev, down, next_id_);
+    frame.features.insert(frame.features.end(), ground.begin(), ground.end());
+  }
+  return frame;
 }
 
 }  // namespace rpvio

@@ -13,6 +13,7 @@
 #include "common/sensor_types.h"
 #include "mrpt_modules/core/feature_frame.h"
 #include "mrpt_modules/frontend/corner_detector.h"
+#include "mrpt_modules/frontend/ground_tracks.h"
 #include "mrpt_modules/frontend/outlier_rejection.h"
 #include "mrpt_modules/frontend/plane_feature_budget.h"
 
@@ -83,6 +84,11 @@ struct TrackerOptions {
   // no corner within 1 % of a facade's strongest (docs/notes/2026-12-05-real-street-images.md).
   int detection_cell_px = 0;
   int min_cell_features = 4;
+  // Tracks on the ground below the horizon carried by its homography, found by direct alignment
+  // of the two images (ground_tracks.h), this many at a time as features of the plane
+  // kGroundLabel (0: none). Needs the gyroscope's rotation and gravity's direction (the module's
+  // IMU). For cars and ground robots, whose road has few corners to track.
+  int ground_features = 0;
   // FeatureTrackerModule: decode and track the images on a second thread while the modules after
   // it work on earlier frames, up to frames_in_flight images ahead (the same outputs, that many
   // frames later on the bus; stats.csv's per-frame times then overlap).
@@ -114,6 +120,7 @@ struct TrackerOptions {
     RPVIO_OPTION(v, detection_level);
     RPVIO_OPTION(v, detection_cell_px);
     RPVIO_OPTION(v, min_cell_features);
+    RPVIO_OPTION(v, ground_features);
     RPVIO_OPTION(v, pipelined);
     RPVIO_OPTION(v, frames_in_flight);
   }
@@ -133,9 +140,11 @@ class FeatureTracker {
   /// size; 0 = not a static plane, 255 = unknown), ignored without use_masks. A missing or
   /// wrong-size mask, an all-zero mask or a blank image yield no features and one log line.
   /// `R_cur_prev`, when given: the camera's rotation since the previous image (previous-camera
-  /// coordinates to current ones), where KLT starts each track (predict_rotation).
+  /// coordinates to current ones), where KLT starts each track (predict_rotation). `down`, when
+  /// given: gravity's direction in the camera, the ground tracks' horizon (ground_features).
   FeatureFrame track(double t, const cv::Mat& image, const cv::Mat& mask,
-                     const Eigen::Matrix3d* R_cur_prev = nullptr);
+                     const Eigen::Matrix3d* R_cur_prev = nullptr,
+                     const Eigen::Vector3d* down = nullptr);
 
   /// Messages about degraded input since the last call (each distinct message once).
   std::vector<std::string> takeWarnings();
@@ -210,6 +219,7 @@ class FeatureTracker {
   // lowest and highest labels, the neighbourhoods of kept tracks, where corners may go.
   cv::Mat lowest_label_, highest_label_, taken_, allowed_, on_plane_;
   int next_id_ = 0;
+  std::optional<GroundTracks> ground_;  // with ground_features
   std::vector<std::string> warnings_, warned_;
 };
 

@@ -12,6 +12,7 @@
 #include <Eigen/Geometry>
 #include <deque>
 #include <future>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -20,6 +21,7 @@
 #include "mrpt_modules/core/module.h"
 #include "mrpt_modules/core/serial_worker.h"
 #include "mrpt_modules/frontend/feature_tracker.h"
+#include "mrpt_modules/imu/gravity_direction.h"
 #include "rawlog_io/rawlog_reader.h"
 
 namespace rpvio {
@@ -73,6 +75,11 @@ class FeatureTrackerModule : public Module {
   std::optional<double> previous_t_;
   Eigen::Matrix3d R_BC_ = Eigen::Matrix3d::Identity();
   double time_offset_ = 0;
+  // Gravity's direction for the ground tracks' horizon (ground_features), over the samples up to
+  // each image's time; 3 s of a car's turn tilt it by a few degrees, not the turn's 15.
+  static constexpr double kGravityTimeConstantS = 3;
+  GravityDirection gravity_{9.81, kGravityTimeConstantS};
+  double gravity_until_ = -std::numeric_limits<double>::infinity();
 };
 
 }  // namespace rpvio

@@ -1,0 +1,272 @@
+#include "mrpt_modules/frontend/ground_alignment.h"
+
+#include <Eigen/Dense>
+#include <array>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+#include "mrpt_modules/frontend/point_undistortion.h"
+
+namespace rpvio {
+namespace {
+
+constexpr double kHuberGrey = 8;  // Cauchy scale: an error this large weighs half
+// A prior holds n near the given down direction where the pixels do not fix it: seen at a grazing
+// angle, the ground's flow changes little over the few degrees below the horizon, and a tilted n
+// with a shorter a fits it almost as well. A tilt of kPriorSigmaRad costs as much as every pixel
+// being kPriorGrey off.
+constexpr double kPriorGrey = 1, kPriorSigmaRad = 5 * M_PI / 180;
+double priorWeight(size_t pixels) {
+  return static_cast<double>(pixels) * kPriorGrey * kPriorGrey / (kPriorSigmaRad * kPriorSigmaRad);
+}
+
+double sampleBilinear(const cv::Mat& image, double u, double v) {
+  const int x = static_cast<int>(u), y = static_cast<int>(v);
+  const double fx = u - x, fy = v - y;
+  auto at = [&](int r, int c) -> double {
+    return image.type() == CV_8U ? image.at<uint8_t>(r, c) : image.at<float>(r, c);
+  };
+  return (1 - fy) * ((1 - fx) * at(y, x) + fx * at(y, x + 1)) +
+         fy * ((1 - fx) * at(y + 1, x) + fx * at(y + 1, x + 1));
+}
+
+// Cauchy's weight and cost: what is not the ground (a parked car, a curb) weighs little.
+double huberWeight(double r) { return 1 / (1 + (r * r) / (kHuberGrey * kHuberGrey)); }
+double robustCost(double r) {
+  return 0.5 * kHuberGrey * kHuberGrey * std::log1p(r * r / (kHuberGrey * kHuberGrey));
+}
+
+/// Two unit vectors orthogonal to n and to each other.
+Eigen::Matrix<double, 3, 2> tangentBasis(const Eigen::Vector3d& n) {
+  const Eigen::Vector3d helper =
+      std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  Eigen::Matrix<double, 3, 2> B;
+  B.col(0) = n.cross(helper).normalized();
+  B.col(1) = n.cross(B.col(0));
+  return B;
+}
+
+}  // namespace
+
+GreyPyramid buildGreyPyramid(const cv::Mat& image, int levels) {
+  GreyPyramid pyramid{image};
+  for (int l = 1; l < levels; ++l) {
+    cv::Mat next;
+    cv::pyrDown(pyramid.back(), next);
+    pyramid.push_back(next);
+  }
+  return pyramid;
+}
+
+Eigen::Vector2d distortToPixel(const Eigen::Vector2d& x, const CameraIntrinsics& camera) {
+  const auto& k = camera.distortion;
+  Eigen::Vector2d d = x;
+  const double r2 = x.squaredNorm();
+  if (camera.model == DistortionModel::RadTan) {
+    const double radial = 1 + k[0] * r2 + k[1] * r2 * r2;
+    d = {x.x() * radial + 2 * k[2] * x.x() * x.y() + k[3] * (r2 + 2 * x.x() * x.x()),
+         x.y() * radial + k[2] * (r2 + 2 * x.y() * x.y()) + 2 * k[3] * x.x() * x.y()};
+  } else if (camera.model == DistortionModel::Equidistant && r2 > 1e-18) {
+    const double r = std::sqrt(r2), theta = std::atan(r), t2 = theta * theta;
+    const double theta_d = theta * (1 + t2 * (k[0] + t2 * (k[1] + t2 * (k[2] + t2 * k[3]))));
+    d = x * (theta_d / r);
+  }
+  return {camera.fx * d.x() + camera.cx, camera.fy * d.y() + camera.cy};
+}
+
+GroundAligner::GroundAligner(const CameraIntrinsics& camera, const GroundAlignmentOptions& options)
+    : camera_(camera), options_(options) {}
+
+std::vector<GroundAligner::Sample> GroundAligner::samples(const cv::Mat& previous, int level,
+                                                          const Eigen::Vector3d& down) {
+  if (normalized_.size() <= static_cast<size_t>(level)) normalized_.resize(level + 1);
+  cv::Mat& lattice = normalized_[level];
+  const double scale = 1 << level;
+  if (lattice.size() != previous.size()) {
+    std::vector<cv::Point2f> pixels;
+    for (int v = 0; v < previous.rows; ++v)
+      for (int u = 0; u < previous.cols; ++u)
+        pixels.emplace_back(static_cast<float>(u * scale), static_cast<float>(v * scale));
+    const std::vector<cv::Point2f> normalized = undistortToNormalized(pixels, camera_);
+    lattice.create(previous.size(), CV_32FC2);
+    for (size_t i = 0; i < normalized.size(); ++i)
+      lattice.at<cv::Vec2f>(static_cast<int>(i) / previous.cols,
+                            static_cast<int>(i) % previous.cols) = {normalized[i].x,
+                                                                    normalized[i].y};
+  }
+  const double min_sine = std::sin(options_.horizon_margin_deg * M_PI / 180);
+  const double min_gradient2 = options_.min_gradient * options_.min_gradient;
+  const Eigen::Vector3d side = down.cross(Eigen::Vector3d::UnitZ()).normalized();
+  std::vector<Sample> found;
+  for (int v = 1; v + 1 < previous.rows; ++v) {
+    const uint8_t* row = previous.ptr<uint8_t>(v);
+    for (int u = 1; u + 1 < previous.cols; ++u) {
+      const double gx = 0.5 * (row[u + 1] - row[u - 1]);
+      const double gy = 0.5 * (previous.at<uint8_t>(v + 1, u) - previous.at<uint8_t>(v - 1, u));
+      if (gx * gx + gy * gy < min_gradient2) continue;
+      const cv::Vec2f& p = lattice.at<cv::Vec2f>(v, u);
+      const Eigen::Vector3d x(p[0], p[1], 1);
+      const double below = down.dot(x);
+      if (below < min_sine * x.norm()) continue;  // above the horizon's margin
+      // A ground point's offset to the side over the height: (x·side)/(x·down), side ⟂ down and
+      // the optical axis.
+      if (std::abs(x.dot(side)) > options_.corridor_heights * below) continue;
+      found.push_back({x, static_cast<float>(row[u])});
+    }
+  }
+  return found;
+}
+
+double GroundAligner::cost(const std::vector<Sample>& samples, const cv::Mat& current, int level,
+                           const Eigen::Matrix3d& R, const GroundMotion& motion, double alpha,
+                           double beta, int* used) const {
+  const Eigen::Matrix3d H = motion.homography(R);
+  const double scale = 1.0 / (1 << level);
+  double sum = 0;
+  int count = 0;
+  for (const Sample& s : samples) {
+    const Eigen::Vector3d y = H * s.x;
+    if (y.z() <= 1e-6) continue;
+    const Eigen::Vector2d p = distortToPixel(y.hnormalized(), camera_) * scale;
+    if (p.x() < 0 || p.y() < 0 || p.x() >= current.cols - 1 || p.y() >= current.rows - 1) continue;
+    const double r = sampleBilinear(current, p.x(), p.y()) - alpha * s.grey - beta;
+    sum += robustCost(r);
+    ++count;
+  }
+  if (used) *used = count;
+  sum += 0.5 * priorWeight(samples.size()) * (motion.n - down_).squaredNorm();
+  // A pixel warped out of the image costs as much as one an error of the robust scale off:
+  // less than a mismatch, more than a match, so that forward motion is not held back.
+  const double outside = static_cast<double>(samples.size() - count);
+  return sum + outside * robustCost(kHuberGrey);
+}
+
+GroundAligner::Result GroundAligner::align(const GreyPyramid& previous, const GreyPyramid& current,
+                                           const Eigen::Matrix3d& R, const Eigen::Vector3d& down,
+                                           const GroundMotion* guess) {
+  Result result;
+  const int coarsest = options_.coarsest_level, finest = options_.finest_level;
+  down_ = down;
+  if (static_cast<int>(previous.size()) <= coarsest || current.size() != previous.size())
+    return result;
+  // Starting points on the coarsest level: the guess, standing still, and motions along the
+  // camera's axes of 5 to 60 % of the ground's distance.
+  std::vector<GroundMotion> starts;
+  if (guess) starts.push_back(*guess);
+  starts.push_back({Eigen::Vector3d::Zero(), down});
+  for (double speed : {0.05, 0.1, 0.2, 0.35, 0.6})
+    for (int axis = 0; axis < 3; ++axis)
+      for (double sign : {-1.0, 1.0})
+        starts.push_back({sign * speed * Eigen::Vector3d::Unit(axis), down});
+  std::vector<Sample> coarse = samples(previous[coarsest], coarsest, down);
+  if (coarse.empty()) return result;
+  const double beta0 = cv::mean(current[coarsest])[0] - cv::mean(previous[coarsest])[0];
+  GroundMotion motion = starts.front();
+  double best = std::numeric_limits<double>::infinity();
+  for (const GroundMotion& start : starts) {
+    const double c = cost(coarse, current[coarsest], coarsest, R, start, 1, beta0);
+    if (c < best) best = c, motion = start;
+  }
+  double alpha = 1, beta = beta0;
+
+  std::vector<Sample> level_samples = std::move(coarse);
+  for (int level = coarsest; level >= finest; --level) {
+    if (level != coarsest) level_samples = samples(previous[level], level, down);
+    const cv::Mat& image = current[level];
+    cv::Mat gx, gy;
+    cv::Sobel(image, gx, CV_32F, 1, 0, 3, 1.0 / 8);
+    cv::Sobel(image, gy, CV_32F, 0, 1, 3, 1.0 / 8);
+    const double scale = 1.0 / (1 << level);
+    double current_cost = cost(level_samples, image, level, R, motion, alpha, beta);
+    double lambda = 1e-3;
+    for (int iteration = 0; iteration < options_.iterations; ++iteration) {
+      // Normal equations of r = I_cur(π(H x)) − α I_prev(x) − β over (δa, δn, δα, δβ).
+      Eigen::Matrix<double, 7, 7> A = Eigen::Matrix<double, 7, 7>::Zero();
+      Eigen::Matrix<double, 7, 1> b = Eigen::Matrix<double, 7, 1>::Zero();
+      const Eigen::Matrix3d H = motion.homography(R);
+      const Eigen::Matrix<double, 3, 2> B = tangentBasis(motion.n);
+      for (const Sample& s : level_samples) {
+        const Eigen::Vector3d y = H * s.x;
+        if (y.z() <= 1e-6) continue;
+        const Eigen::Vector2d p = distortToPixel(y.hnormalized(), camera_) * scale;
+        if (p.x() < 0 || p.y() < 0 || p.x() >= image.cols - 1 || p.y() >= image.rows - 1) continue;
+        const double r = sampleBilinear(image, p.x(), p.y()) - alpha * s.grey - beta;
+        const Eigen::RowVector2d g(sampleBilinear(gx, p.x(), p.y()),
+                                   sampleBilinear(gy, p.x(), p.y()));
+        // ∂p/∂y of the pinhole projection (the lens distortion's share left out).
+        Eigen::Matrix<double, 2, 3> dp;
+        dp << camera_.fx / y.z(), 0, -camera_.fx * y.x() / (y.z() * y.z()), 0, camera_.fy / y.z(),
+            -camera_.fy * y.y() / (y.z() * y.z());
+        const Eigen::RowVector3d gdp = g * dp * scale;
+        Eigen::Matrix<double, 1, 7> J;
+        J.segment<3>(0) = gdp * motion.n.dot(s.x);                 // ∂y/∂a = (nᵀx) I
+        J.segment<2>(3) = gdp * motion.a * (s.x.transpose() * B);  // ∂y/∂δn = a xᵀB
+        J(5) = -s.grey;
+        J(6) = -1;
+        const double w = huberWeight(r);
+        A.noalias() += w * J.transpose() * J;
+        b.noalias() += w * J.transpose() * r;
+      }
+      const double prior = priorWeight(level_samples.size());
+      A.block<2, 2>(3, 3) += prior * Eigen::Matrix2d::Identity();  // the prior on n
+      b.segment<2>(3) += prior * B.transpose() * (motion.n - down_);
+      bool improved = false;
+      while (!improved && lambda < 1e6) {
+        Eigen::Matrix<double, 7, 7> damped = A;
+        damped.diagonal() += lambda * A.diagonal().cwiseMax(1e-9);
+        const Eigen::Matrix<double, 7, 1> step = -damped.ldlt().solve(b);
+        if (!step.allFinite()) break;
+        GroundMotion next{motion.a + step.segment<3>(0),
+                          (motion.n + B * step.segment<2>(3)).normalized()};
+        const double next_cost =
+            cost(level_samples, image, level, R, next, alpha + step(5), beta + step(6));
+        if (next_cost < current_cost) {
+          motion = next;
+          alpha += step(5), beta += step(6);
+          const double gain = current_cost - next_cost;
+          current_cost = next_cost;
+          lambda = std::max(lambda / 3, 1e-6);
+          improved = true;
+          if (gain < 1e-4 * current_cost) iteration = options_.iterations;  // converged
+        } else {
+          lambda *= 4;
+        }
+      }
+      if (!improved) break;
+    }
+    if (level == finest) {
+      int used = 0;
+      cost(level_samples, image, level, R, motion, alpha, beta, &used);
+      result.pixels = used;
+      double weighted = 0, weights = 0;
+      int inliers = 0;
+      const Eigen::Matrix3d H = motion.homography(R);
+      for (const Sample& s : level_samples) {
+        const Eigen::Vector3d y = H * s.x;
+        if (y.z() <= 1e-6) continue;
+        const Eigen::Vector2d p = distortToPixel(y.hnormalized(), camera_) * scale;
+        if (p.x() < 0 || p.y() < 0 || p.x() >= image.cols - 1 || p.y() >= image.rows - 1) continue;
+        const double r = sampleBilinear(image, p.x(), p.y()) - alpha * s.grey - beta;
+        weighted += huberWeight(r) * r * r;
+        weights += huberWeight(r);
+        if (std::abs(r) < kHuberGrey) ++inliers;
+      }
+      result.residual_grey = weights > 0 ? std::sqrt(weighted / weights) : 0;
+      // The same without the ground's motion (the rotation alone): what the alignment explains.
+      const GroundMotion still{Eigen::Vector3d::Zero(), motion.n};
+      result.still_cost_ratio = cost(level_samples, image, level, R, motion, alpha, beta) /
+                                cost(level_samples, image, level, R, still, alpha, beta);
+      result.inlier_share = used > 0 ? static_cast<double>(inliers) / used : 0;
+    }
+  }
+  result.motion = motion;
+  const double tilt = std::acos(std::clamp(motion.n.dot(down), -1.0, 1.0)) * 180 / M_PI;
+  result.ok =
+      result.pixels >= options_.min_pixels && result.inlier_share >= options_.min_inlier_share &&
+      result.still_cost_ratio <= options_.max_still_cost_ratio &&
+      result.residual_grey <= options_.max_residual_grey && tilt <= options_.max_normal_tilt_deg &&
+      motion.a.allFinite() && motion.a.norm() <= options_.max_heights_per_image;
+  return result;
+}
+
+}  // namespace rpvio
