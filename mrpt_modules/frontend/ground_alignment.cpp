@@ -10,7 +10,7 @@
 namespace rpvio {
 namespace {
 
-constexpr double kHuberGrey = 8;  // Cauchy scale: an error this large weighs half
+constexpr double kCauchyGrey = 8;  // Cauchy scale: an error this large weighs half
 // A prior holds n near the given down direction where the pixels do not fix it: seen at a grazing
 // angle, the ground's flow changes little over the few degrees below the horizon, and a tilted n
 // with a shorter a fits it almost as well. A tilt of kPriorSigmaRad costs as much as every pixel
@@ -31,9 +31,9 @@ double sampleBilinear(const cv::Mat& image, double u, double v) {
 }
 
 // Cauchy's weight and cost: what is not the ground (a parked car, a curb) weighs little.
-double huberWeight(double r) { return 1 / (1 + (r * r) / (kHuberGrey * kHuberGrey)); }
+double cauchyWeight(double r) { return 1 / (1 + (r * r) / (kCauchyGrey * kCauchyGrey)); }
 double robustCost(double r) {
-  return 0.5 * kHuberGrey * kHuberGrey * std::log1p(r * r / (kHuberGrey * kHuberGrey));
+  return 0.5 * kCauchyGrey * kCauchyGrey * std::log1p(r * r / (kCauchyGrey * kCauchyGrey));
 }
 
 /// Two unit vectors orthogonal to n and to each other.
@@ -117,18 +117,24 @@ std::vector<GroundAligner::Sample> GroundAligner::samples(const cv::Mat& previou
   return found;
 }
 
+bool GroundAligner::warp(const Eigen::Matrix3d& H, const Eigen::Vector3d& x, const cv::Mat& image,
+                         int level, Eigen::Vector3d& y, Eigen::Vector2d& p) const {
+  y = H * x;
+  if (y.z() <= 1e-6) return false;
+  p = distortToPixel(y.hnormalized(), camera_) / static_cast<double>(1 << level);
+  return p.x() >= 0 && p.y() >= 0 && p.x() < image.cols - 1 && p.y() < image.rows - 1;
+}
+
 double GroundAligner::cost(const std::vector<Sample>& samples, const cv::Mat& current, int level,
                            const Eigen::Matrix3d& R, const GroundMotion& motion, double alpha,
                            double beta, int* used) const {
   const Eigen::Matrix3d H = motion.homography(R);
-  const double scale = 1.0 / (1 << level);
   double sum = 0;
   int count = 0;
   for (const Sample& s : samples) {
-    const Eigen::Vector3d y = H * s.x;
-    if (y.z() <= 1e-6) continue;
-    const Eigen::Vector2d p = distortToPixel(y.hnormalized(), camera_) * scale;
-    if (p.x() < 0 || p.y() < 0 || p.x() >= current.cols - 1 || p.y() >= current.rows - 1) continue;
+    Eigen::Vector3d y;
+    Eigen::Vector2d p;
+    if (!warp(H, s.x, current, level, y, p)) continue;
     const double r = sampleBilinear(current, p.x(), p.y()) - alpha * s.grey - beta;
     sum += robustCost(r);
     ++count;
@@ -138,7 +144,7 @@ double GroundAligner::cost(const std::vector<Sample>& samples, const cv::Mat& cu
   // A pixel warped out of the image costs as much as one an error of the robust scale off:
   // less than a mismatch, more than a match, so that forward motion is not held back.
   const double outside = static_cast<double>(samples.size() - count);
-  return sum + outside * robustCost(kHuberGrey);
+  return sum + outside * robustCost(kCauchyGrey);
 }
 
 GroundAligner::Result GroundAligner::align(const GreyPyramid& previous, const GreyPyramid& current,
@@ -186,10 +192,9 @@ GroundAligner::Result GroundAligner::align(const GreyPyramid& previous, const Gr
       const Eigen::Matrix3d H = motion.homography(R);
       const Eigen::Matrix<double, 3, 2> B = tangentBasis(motion.n);
       for (const Sample& s : level_samples) {
-        const Eigen::Vector3d y = H * s.x;
-        if (y.z() <= 1e-6) continue;
-        const Eigen::Vector2d p = distortToPixel(y.hnormalized(), camera_) * scale;
-        if (p.x() < 0 || p.y() < 0 || p.x() >= image.cols - 1 || p.y() >= image.rows - 1) continue;
+        Eigen::Vector3d y;
+        Eigen::Vector2d p;
+        if (!warp(H, s.x, image, level, y, p)) continue;
         const double r = sampleBilinear(image, p.x(), p.y()) - alpha * s.grey - beta;
         const Eigen::RowVector2d g(sampleBilinear(gx, p.x(), p.y()),
                                    sampleBilinear(gy, p.x(), p.y()));
@@ -203,7 +208,7 @@ GroundAligner::Result GroundAligner::align(const GreyPyramid& previous, const Gr
         J.segment<2>(3) = gdp * motion.a * (s.x.transpose() * B);  // ∂y/∂δn = a xᵀB
         J(5) = -s.grey;
         J(6) = -1;
-        const double w = huberWeight(r);
+        const double w = cauchyWeight(r);
         A.noalias() += w * J.transpose() * J;
         b.noalias() += w * J.transpose() * r;
       }
@@ -242,14 +247,13 @@ GroundAligner::Result GroundAligner::align(const GreyPyramid& previous, const Gr
       int inliers = 0;
       const Eigen::Matrix3d H = motion.homography(R);
       for (const Sample& s : level_samples) {
-        const Eigen::Vector3d y = H * s.x;
-        if (y.z() <= 1e-6) continue;
-        const Eigen::Vector2d p = distortToPixel(y.hnormalized(), camera_) * scale;
-        if (p.x() < 0 || p.y() < 0 || p.x() >= image.cols - 1 || p.y() >= image.rows - 1) continue;
+        Eigen::Vector3d y;
+        Eigen::Vector2d p;
+        if (!warp(H, s.x, image, level, y, p)) continue;
         const double r = sampleBilinear(image, p.x(), p.y()) - alpha * s.grey - beta;
-        weighted += huberWeight(r) * r * r;
-        weights += huberWeight(r);
-        if (std::abs(r) < kHuberGrey) ++inliers;
+        weighted += cauchyWeight(r) * r * r;
+        weights += cauchyWeight(r);
+        if (std::abs(r) < kCauchyGrey) ++inliers;
       }
       result.residual_grey = weights > 0 ? std::sqrt(weighted / weights) : 0;
       // The same without the ground's motion (the rotation alone): what the alignment explains.

@@ -76,6 +76,9 @@ class GroundAligner {
   };
   /// The previous image's gradient pixels below the horizon on `level`.
   std::vector<Sample> samples(const cv::Mat& previous, int level, const Eigen::Vector3d& down);
+  /// y = H x and its pixel p in `image` of `level`; false when behind the camera or outside.
+  bool warp(const Eigen::Matrix3d& H, const Eigen::Vector3d& x, const cv::Mat& image, int level,
+            Eigen::Vector3d& y, Eigen::Vector2d& p) const;
   /// Robust cost of `motion` (brightness gain and offset α, β) over `samples` into `current`.
   double cost(const std::vector<Sample>& samples, const cv::Mat& current, int level,
               const Eigen::Matrix3d& R, const GroundMotion& motion, double alpha, double beta,

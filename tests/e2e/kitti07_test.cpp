@@ -53,8 +53,8 @@ Evaluated run(const test::TempDir& dir, const std::string& mode, const std::stri
   return e;
 }
 
-TEST(Kitti07, RpvioAutoAndVinsMonoKeepTheTrackOnRealStreetImages) {
-  test::TempDir dir("kitti07");
+/// k07.rawlog and calib.ini in `dir`, by rpvio-import euroc.
+void importKitti07(const test::TempDir& dir) {
   std::string out;
   ASSERT_EQ(
       test::runCommand(test::binDir() + "/rpvio-import euroc --mav0 " + kData + "/mav0 --gt " +
@@ -62,6 +62,11 @@ TEST(Kitti07, RpvioAutoAndVinsMonoKeepTheTrackOnRealStreetImages) {
                        out),
       0)
       << out;
+}
+
+TEST(Kitti07, RpvioAutoAndVinsMonoKeepTheTrackOnRealStreetImages) {
+  test::TempDir dir("kitti07");
+  ASSERT_NO_FATAL_FAILURE(importKitti07(dir));
   const Evaluated vins = run(dir, "vins-mono"), automatic = run(dir, "rpvio-auto");
   // Every frame stamp of the EuRoC folder (ns) is a row of stats.csv, and initialized_at is one.
   std::ifstream csv(kData + "/mav0/cam0/data.csv");
@@ -127,13 +132,7 @@ TEST(Kitti07, GroundTracksMapTheRoadAndTheCameraHeightHoldsTheScale) {
   // camera): issue #69's 0.45 m, the road level within 2° and the body (1.55 m above the road in
   // the ground truth) within 5 cm of it.
   test::TempDir dir("kitti07_ground");
-  std::string out;
-  ASSERT_EQ(
-      test::runCommand(test::binDir() + "/rpvio-import euroc --mav0 " + kData + "/mav0 --gt " +
-                           kData + "/groundtruth.tum --out " + dir.file("k07.rawlog"),
-                       out),
-      0)
-      << out;
+  ASSERT_NO_FATAL_FAILURE(importKitti07(dir));
   test::writeText(dir.file("calib_height.ini"),
                   test::readFile(dir.file("calib.ini")) + "\n[ground]\ncamera_height = 1.65\n");
   std::string config = test::readFile(std::string(RPVIO_SOURCE_DIR) + "/config/rpvio-auto.ini");
