@@ -16,6 +16,7 @@ void EstimatorOptions::validate(const OptionsLoader& loader) const {
   loader.require(init_fallback_parallax_px > 0 && init_fallback_parallax_px <= init_parallax_px,
                  "init_fallback_parallax_px", "must be positive and at most init_parallax_px");
   loader.require(camera_height_sigma >= 0, "camera_height_sigma", "must be 0 (off) or positive");
+  loader.require(ground_pixel_sigma > 0, "ground_pixel_sigma", "must be positive");
   loader.require(accel_bias_prior_sigma >= 0, "accel_bias_prior_sigma",
                  "must be 0 (off) or positive");
   loader.require(time_offset_systematic_margin >= 0, "time_offset_systematic_margin",

@@ -26,7 +26,10 @@ struct EstimatorOptions {
   // The planes without homography factors go to the planes map too, as a fit of their
   // triangulated features (with verify_planes, only those a check found static).
   bool map_all_planes = false;
-  double pixel_sigma = 1.5;   // factor weight: virtual_focal / pixel_sigma
+  double pixel_sigma = 1.5;  // factor weight: virtual_focal / pixel_sigma
+  // The same for the ground's tracks (ground_features): points carried by one aligned homography
+  // per image pair, whose errors are shared and several pixels large at speed.
+  double ground_pixel_sigma = 6;
   double cauchy_scale = 1.0;  // robust loss scale, in units of pixel_sigma
   // The window's IMU factors use the calibration's noise densities and random walks times this
   // factor (VINS-Mono's configs inflate them likewise).
@@ -179,6 +182,7 @@ struct EstimatorOptions {
     RPVIO_OPTION_CHOICE(v, homography_planes, kHomographyPlanesNames);
     RPVIO_OPTION(v, map_all_planes);
     RPVIO_OPTION(v, pixel_sigma);
+    RPVIO_OPTION(v, ground_pixel_sigma);
     RPVIO_OPTION(v, cauchy_scale);
     RPVIO_OPTION(v, imu_noise_inflation);
     RPVIO_OPTION(v, max_imu_step_s);

@@ -158,6 +158,9 @@ class SlidingWindowEstimator {
     kNewestFrames,               // the two newest frames against the rest held (motion only)
     kPlaneCovariances,           // no solve: the covariances only, at the window's state
   };
+  /// Reprojection and homography weight of a plane's tracks: virtual_focal / pixel_sigma, or
+  /// ground_pixel_sigma for the ground's tracks.
+  double trackWeight(int plane_id) const;
   /// One solve of the window.
   void optimize(WindowSolve solve);
   /// The ground among `planes` (those with homography factors), when the camera's height is known.

@@ -43,7 +43,6 @@ void SlidingWindowEstimator::marginalizeOldest() {
   std::set<const double*> remove = {oldest.pose, oldest.speed_bias};
   std::map<uint64_t, double*> pose_of;
   for (auto& f : window_) pose_of[f->id] = f->pose;
-  const double weight = options_.virtual_focal / options_.pixel_sigma;
   auto loss = std::make_shared<ceres::CauchyLoss>(options_.cauchy_scale);
   const std::set<int> constrained = planes_.constrained(features_);
   HomographyGroups homographies;
@@ -54,7 +53,7 @@ void SlidingWindowEstimator::marginalizeOldest() {
     for (size_t k = 1; k < track.observations.size(); ++k) {
       const TrackObservation& o = track.observations[k];
       marginalizer.addFactor(std::unique_ptr<ceres::CostFunction>(ReprojectionResidual::create(
-                                 anchor.normalized, o.normalized, weight)),
+                                 anchor.normalized, o.normalized, trackWeight(track.plane_id))),
                              loss, {oldest.pose, pose_of[o.frame], mount_, track.inv_depth});
       if (plane)
         homographies[{track.plane_id, anchor.frame, o.frame}].push_back(
@@ -66,9 +65,10 @@ void SlidingWindowEstimator::marginalizeOldest() {
   for (auto& [key, features] : homographies) {
     const auto& [plane_id, frame_i, frame_j] = key;
     PlaneEstimate& plane = planes_.estimates().at(plane_id);
-    marginalizer.addFactor(
-        std::make_unique<StackedHomographyResiduals>(std::move(features), weight, loss.get()),
-        nullptr, {oldest.pose, pose_of[frame_j], mount_, plane.normal, plane.distance});
+    marginalizer.addFactor(std::make_unique<StackedHomographyResiduals>(
+                               std::move(features), trackWeight(plane_id), loss.get()),
+                           nullptr,
+                           {oldest.pose, pose_of[frame_j], mount_, plane.normal, plane.distance});
   }
   if (accel_bias_prior_) {
     marginalizer.addFactor(std::unique_ptr<ceres::CostFunction>(accelBiasPriorFactor()), nullptr,

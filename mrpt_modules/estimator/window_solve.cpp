@@ -36,7 +36,6 @@ void SlidingWindowEstimator::optimize(WindowSolve solve) {
                              window_[k]->speed_bias);
   std::map<uint64_t, double*> pose_of;
   for (auto& f : window_) pose_of[f->id] = f->pose;
-  const double weight = options_.virtual_focal / options_.pixel_sigma;
   const uint64_t newest = window_.back()->id;
   report_.features = 0;
   std::set<int> planes_with_factors;
@@ -55,9 +54,10 @@ void SlidingWindowEstimator::optimize(WindowSolve solve) {
       const TrackObservation& o = track.observations[k];
       if (!anchor_free && !free_frames.count(o.frame)) continue;
       track_added = true;
-      problem.AddResidualBlock(
-          ReprojectionResidual::create(anchor.normalized, o.normalized, weight),
-          &solve_problem.loss, pose_of[anchor.frame], pose_of[o.frame], mount_, track.inv_depth);
+      problem.AddResidualBlock(ReprojectionResidual::create(anchor.normalized, o.normalized,
+                                                            trackWeight(track.plane_id)),
+                               &solve_problem.loss, pose_of[anchor.frame], pose_of[o.frame], mount_,
+                               track.inv_depth);
       if (plane)
         homographies[{track.plane_id, anchor.frame, o.frame}].push_back(
             {anchor.normalized, o.normalized});
@@ -67,9 +67,10 @@ void SlidingWindowEstimator::optimize(WindowSolve solve) {
   for (auto& [key, features] : homographies) {
     const auto& [plane_id, frame_i, frame_j] = key;
     PlaneEstimate& plane = planes_.estimates().at(plane_id);
-    problem.AddResidualBlock(
-        new StackedHomographyResiduals(std::move(features), weight, &solve_problem.loss), nullptr,
-        pose_of[frame_i], pose_of[frame_j], mount_, plane.normal, plane.distance);
+    problem.AddResidualBlock(new StackedHomographyResiduals(
+                                 std::move(features), trackWeight(plane_id), &solve_problem.loss),
+                             nullptr, pose_of[frame_i], pose_of[frame_j], mount_, plane.normal,
+                             plane.distance);
   }
   report_.planes = planes_with_factors.size();
   if (prior_ &&
@@ -139,6 +140,11 @@ void SlidingWindowEstimator::optimize(WindowSolve solve) {
   if (!planes_.updateCovariances(problem, planes_with_factors)) return;
   keyframes_since_covariances_ = 0;
   ++covariance_updates_;
+}
+
+double SlidingWindowEstimator::trackWeight(int plane_id) const {
+  return options_.virtual_focal /
+         (plane_id == kGroundLabel ? options_.ground_pixel_sigma : options_.pixel_sigma);
 }
 
 std::optional<GroundInWindow> SlidingWindowEstimator::chooseGround(

@@ -10,6 +10,7 @@
 namespace rpvio {
 namespace {
 
+constexpr double kMarginPx = 3;    // of a level's pixels, from the image's edge
 constexpr double kCauchyGrey = 8;  // Cauchy scale: an error this large weighs half
 // A prior holds n near the given down direction where the pixels do not fix it: seen at a grazing
 // angle, the ground's flow changes little over the few degrees below the horizon, and a tilted n
@@ -114,6 +115,14 @@ std::vector<GroundAligner::Sample> GroundAligner::samples(const cv::Mat& previou
       found.push_back({x, static_cast<float>(row[u])});
     }
   }
+  // At most max_pixels, evenly spread over the region (the cost is linear in them).
+  if (found.size() > static_cast<size_t>(options_.max_pixels)) {
+    std::vector<Sample> thinned;
+    const double step = static_cast<double>(found.size()) / options_.max_pixels;
+    for (double i = 0; i < found.size(); i += step)
+      thinned.push_back(found[static_cast<size_t>(i)]);
+    found = std::move(thinned);
+  }
   return found;
 }
 
@@ -179,6 +188,19 @@ GroundAligner::Result GroundAligner::align(const GreyPyramid& previous, const Gr
   for (int level = coarsest; level >= finest; --level) {
     if (level != coarsest) level_samples = samples(previous[level], level, down);
     const cv::Mat& image = current[level];
+    // Only the pixels the level's starting motion keeps inside the image, with a margin: those
+    // it sends out would pull the motion short to stay in (forward motion pushes the road's
+    // lowest pixels out of the next image).
+    const Eigen::Matrix3d H_start = motion.homography(R);
+    std::vector<Sample> inside;
+    for (const Sample& s : level_samples) {
+      Eigen::Vector3d y;
+      Eigen::Vector2d p;
+      if (warp(H_start, s.x, image, level, y, p) && p.x() >= kMarginPx && p.y() >= kMarginPx &&
+          p.x() < image.cols - 1 - kMarginPx && p.y() < image.rows - 1 - kMarginPx)
+        inside.push_back(s);
+    }
+    level_samples = std::move(inside);
     cv::Mat gx, gy;
     cv::Sobel(image, gx, CV_32F, 1, 0, 3, 1.0 / 8);
     cv::Sobel(image, gy, CV_32F, 0, 1, 3, 1.0 / 8);
@@ -246,20 +268,23 @@ GroundAligner::Result GroundAligner::align(const GreyPyramid& previous, const Gr
       double weighted = 0, weights = 0;
       int inliers = 0;
       const Eigen::Matrix3d H = motion.homography(R);
+      std::vector<Sample> seen;  // the pixels the motion keeps in the image
       for (const Sample& s : level_samples) {
         Eigen::Vector3d y;
         Eigen::Vector2d p;
         if (!warp(H, s.x, image, level, y, p)) continue;
+        seen.push_back(s);
         const double r = sampleBilinear(image, p.x(), p.y()) - alpha * s.grey - beta;
         weighted += cauchyWeight(r) * r * r;
         weights += cauchyWeight(r);
         if (std::abs(r) < kCauchyGrey) ++inliers;
       }
       result.residual_grey = weights > 0 ? std::sqrt(weighted / weights) : 0;
-      // The same without the ground's motion (the rotation alone): what the alignment explains.
+      // The same pixels without the ground's motion (the rotation alone): what the alignment
+      // explains (over the pixels it keeps in view: sending pixels out is no explanation).
       const GroundMotion still{Eigen::Vector3d::Zero(), motion.n};
-      result.still_cost_ratio = cost(level_samples, image, level, R, motion, alpha, beta) /
-                                cost(level_samples, image, level, R, still, alpha, beta);
+      result.still_cost_ratio = cost(seen, image, level, R, motion, alpha, beta) /
+                                cost(seen, image, level, R, still, alpha, beta);
       result.inlier_share = used > 0 ? static_cast<double>(inliers) / used : 0;
     }
   }

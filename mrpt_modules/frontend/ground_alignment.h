@@ -33,10 +33,11 @@ struct GroundAlignmentOptions {
   int finest_level = 2;
   int iterations = 12;                // per level
   double min_gradient = 3;            // grey levels per pixel of the level
+  int max_pixels = 600;               // per level, evenly thinned beyond
   int min_pixels = 200;               // on the finest level, else no alignment
   double max_residual_grey = 12;      // robust RMS of the brightness error where it converged
   double min_inlier_share = 0.6;      // pixels whose brightness error is within the robust scale
-  double max_still_cost_ratio = 0.7;  // the alignment explains the images' difference
+  double max_still_cost_ratio = 0.5;  // the alignment explains half the images' difference
   double max_normal_tilt_deg = 25;    // n from the given down direction: else not the ground
   double max_heights_per_image = 2;   // |a|: a car at 30 m/s, 10 Hz, 1.5 m high moves 2 heights
 };

@@ -20,7 +20,7 @@ namespace rpvio {
 struct GroundTrackOptions {
   int features = 16;       // tracks kept on the ground
   double spacing_px = 60;  // at least this far apart when they start
-  int max_length = 40;     // frames a track lives at most
+  int max_length = 4;      // frames a track lives at most (each step adds the alignment's error)
 };
 
 class GroundTracks {
