@@ -21,14 +21,14 @@ double priorWeight(size_t pixels) {
   return static_cast<double>(pixels) * kPriorGrey * kPriorGrey / (kPriorSigmaRad * kPriorSigmaRad);
 }
 
+/// An 8-bit image at (u, v), bilinear; (u, v) at least one pixel inside the last row and column.
 double sampleBilinear(const cv::Mat& image, double u, double v) {
   const int x = static_cast<int>(u), y = static_cast<int>(v);
   const double fx = u - x, fy = v - y;
-  auto at = [&](int r, int c) -> double {
-    return image.type() == CV_8U ? image.at<uint8_t>(r, c) : image.at<float>(r, c);
-  };
-  return (1 - fy) * ((1 - fx) * at(y, x) + fx * at(y, x + 1)) +
-         fy * ((1 - fx) * at(y + 1, x) + fx * at(y + 1, x + 1));
+  const uint8_t* top = image.ptr<uint8_t>(y) + x;
+  const uint8_t* bottom = image.ptr<uint8_t>(y + 1) + x;
+  return (1 - fy) * ((1 - fx) * top[0] + fx * top[1]) +
+         fy * ((1 - fx) * bottom[0] + fx * bottom[1]);
 }
 
 // Cauchy's weight and cost: what is not the ground (a parked car, a curb) weighs little.
@@ -201,9 +201,6 @@ GroundAligner::Result GroundAligner::align(const GreyPyramid& previous, const Gr
         inside.push_back(s);
     }
     level_samples = std::move(inside);
-    cv::Mat gx, gy;
-    cv::Sobel(image, gx, CV_32F, 1, 0, 3, 1.0 / 8);
-    cv::Sobel(image, gy, CV_32F, 0, 1, 3, 1.0 / 8);
     const double scale = 1.0 / (1 << level);
     double current_cost = cost(level_samples, image, level, R, motion, alpha, beta);
     double lambda = 1e-3;
@@ -218,8 +215,12 @@ GroundAligner::Result GroundAligner::align(const GreyPyramid& previous, const Gr
         Eigen::Vector2d p;
         if (!warp(H, s.x, image, level, y, p)) continue;
         const double r = sampleBilinear(image, p.x(), p.y()) - alpha * s.grey - beta;
-        const Eigen::RowVector2d g(sampleBilinear(gx, p.x(), p.y()),
-                                   sampleBilinear(gy, p.x(), p.y()));
+        if (p.x() < 1 || p.y() < 1 || p.x() >= image.cols - 2 || p.y() >= image.rows - 2) continue;
+        // The image's gradient there, by central differences (only where the samples land).
+        const Eigen::RowVector2d g(0.5 * (sampleBilinear(image, p.x() + 1, p.y()) -
+                                          sampleBilinear(image, p.x() - 1, p.y())),
+                                   0.5 * (sampleBilinear(image, p.x(), p.y() + 1) -
+                                          sampleBilinear(image, p.x(), p.y() - 1)));
         // ∂p/∂y of the pinhole projection (the lens distortion's share left out).
         Eigen::Matrix<double, 2, 3> dp;
         dp << camera_.fx / y.z(), 0, -camera_.fx * y.x() / (y.z() * y.z()), 0, camera_.fy / y.z(),
