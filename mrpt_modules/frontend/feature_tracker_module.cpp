@@ -39,16 +39,17 @@ void FeatureTrackerModule::initialize(const IniFile& config, const std::string& 
                                 [this](const auto& m) { onImageFile(pending_masks_, m); });
   if (options.predict_rotation) {
     R_BC_ = context.calibration.T_BC.linear();
-    gravity_ = GravityDirection(context.calibration.imu.gravity, kGravityTimeConstantS);
     time_offset_ = context.calibration.time_offset;
     context.bus.subscribeSensor(labels::kImu, [this](const auto& m) { onImu(m); });
     // The estimator's attitude, once it has one, is the ground tracks' gravity (the newest pose
     // published; the rotation since its frame is left out: one frame of a turn).
-    if (options.ground_features > 0)
+    if (options.ground_features > 0) {
+      gravity_.emplace(context.calibration.imu.gravity, kGravityTimeConstantS);
       context.bus.subscribe<StateEstimate>([this](const StateEstimate& s) {
         const Eigen::Quaterniond q_wb(s.pose[6], s.pose[3], s.pose[4], s.pose[5]);
-        gravity_.set(q_wb.inverse() * -Eigen::Vector3d::UnitZ());
+        gravity_->set(q_wb.inverse() * -Eigen::Vector3d::UnitZ());
       });
+    }
   }
   // The frames still in flight go out before the others hear of the run's end (this module
   // subscribes first when it is listed first, as the front-end is).
@@ -77,8 +78,9 @@ std::optional<Eigen::Matrix3d> FeatureTrackerModule::gyroRotationTo(double t) {
   const std::vector<ImuSample> before(
       gyro_.begin(), std::lower_bound(gyro_.begin(), gyro_.end(), to,
                                       [](const ImuSample& s, double x) { return s.t < x; }));
-  for (const ImuSample& s : before)
-    if (s.t > gravity_until_) gravity_.add(s), gravity_until_ = s.t;
+  if (gravity_)
+    for (const ImuSample& s : before)
+      if (s.t > gravity_until_) gravity_->add(s), gravity_until_ = s.t;
   std::optional<Eigen::Matrix3d> R_cur_prev;
   if (previous_t_ && !before.empty() && t > *previous_t_)
     R_cur_prev = cameraRotationBetween(before, *previous_t_ + time_offset_, to, R_BC_);
@@ -93,9 +95,8 @@ std::optional<Eigen::Matrix3d> FeatureTrackerModule::gyroRotationTo(double t) {
 void FeatureTrackerModule::track(double t, const ImageFileRef& image,
                                  const std::optional<ImageFileRef>& mask, bool on_bus) {
   const auto R_cur_prev = gyroRotationTo(t);  // here: gyro_ grows on this thread
-  const std::optional<Eigen::Vector3d> down =
-      gravity_.down() ? std::optional<Eigen::Vector3d>(R_BC_.transpose() * *gravity_.down())
-                      : std::nullopt;
+  std::optional<Eigen::Vector3d> down;
+  if (gravity_ && gravity_->down()) down = R_BC_.transpose() * *gravity_->down();
   auto run = [this, t, image, mask, R_cur_prev, down] {
     const auto start = std::chrono::steady_clock::now();
     const cv::Mat pixels = decodeGrayImage(image);

@@ -75,10 +75,11 @@ class FeatureTrackerModule : public Module {
   std::optional<double> previous_t_;
   Eigen::Matrix3d R_BC_ = Eigen::Matrix3d::Identity();
   double time_offset_ = 0;
-  // Gravity's direction for the ground tracks' horizon (ground_features), over the samples up to
-  // each image's time; 3 s of a car's turn tilt it by a few degrees, not the turn's 15.
+  // Gravity's direction for the ground tracks' horizon (with ground_features only), over the
+  // samples up to each image's time; 3 s of a car's turn tilt it by a few degrees, not the
+  // turn's 15.
   static constexpr double kGravityTimeConstantS = 3;
-  GravityDirection gravity_{9.81, kGravityTimeConstantS};
+  std::optional<GravityDirection> gravity_;
   double gravity_until_ = -std::numeric_limits<double>::infinity();
 };
 

@@ -1,7 +1,6 @@
 #include "mrpt_modules/frontend/ground_alignment.h"
 
 #include <Eigen/Dense>
-#include <array>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
@@ -136,7 +135,7 @@ bool GroundAligner::warp(const Eigen::Matrix3d& H, const Eigen::Vector3d& x, con
 
 double GroundAligner::cost(const std::vector<Sample>& samples, const cv::Mat& current, int level,
                            const Eigen::Matrix3d& R, const GroundMotion& motion, double alpha,
-                           double beta, int* used) const {
+                           double beta) const {
   const Eigen::Matrix3d H = motion.homography(R);
   double sum = 0;
   int count = 0;
@@ -148,7 +147,6 @@ double GroundAligner::cost(const std::vector<Sample>& samples, const cv::Mat& cu
     sum += robustCost(r);
     ++count;
   }
-  if (used) *used = count;
   sum += 0.5 * priorWeight(samples.size()) * (motion.n - down_).squaredNorm();
   // A pixel warped out of the image costs as much as one an error of the robust scale off:
   // less than a mismatch, more than a match, so that forward motion is not held back.
@@ -263,9 +261,6 @@ GroundAligner::Result GroundAligner::align(const GreyPyramid& previous, const Gr
       if (!improved) break;
     }
     if (level == finest) {
-      int used = 0;
-      cost(level_samples, image, level, R, motion, alpha, beta, &used);
-      result.pixels = used;
       double weighted = 0, weights = 0;
       int inliers = 0;
       const Eigen::Matrix3d H = motion.homography(R);
@@ -286,7 +281,8 @@ GroundAligner::Result GroundAligner::align(const GreyPyramid& previous, const Gr
       const GroundMotion still{Eigen::Vector3d::Zero(), motion.n};
       result.still_cost_ratio = cost(seen, image, level, R, motion, alpha, beta) /
                                 cost(seen, image, level, R, still, alpha, beta);
-      result.inlier_share = used > 0 ? static_cast<double>(inliers) / used : 0;
+      result.pixels = static_cast<int>(seen.size());
+      result.inlier_share = seen.empty() ? 0 : static_cast<double>(inliers) / seen.size();
     }
   }
   result.motion = motion;

@@ -82,8 +82,8 @@ class GroundAligner {
             Eigen::Vector3d& y, Eigen::Vector2d& p) const;
   /// Robust cost of `motion` (brightness gain and offset α, β) over `samples` into `current`.
   double cost(const std::vector<Sample>& samples, const cv::Mat& current, int level,
-              const Eigen::Matrix3d& R, const GroundMotion& motion, double alpha, double beta,
-              int* used = nullptr) const;
+              const Eigen::Matrix3d& R, const GroundMotion& motion, double alpha,
+              double beta) const;
 
   CameraIntrinsics camera_;
   GroundAlignmentOptions options_;

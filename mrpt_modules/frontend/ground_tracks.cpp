@@ -13,6 +13,18 @@ double angleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0)) * 180 / M_PI;
 }
 
+/// A ground point as the front-end publishes it.
+TrackedFeature feature(const GroundTracks::Point& p, const Eigen::Vector2d& velocity) {
+  TrackedFeature f;
+  f.id = p.id;
+  f.plane_id = kGroundLabel;
+  f.pixel = p.pixel;
+  f.normalized = p.normalized;
+  f.velocity = velocity;
+  f.track_length = p.length;
+  return f;
+}
+
 }  // namespace
 
 GroundTracks::GroundTracks(const CameraIntrinsics& camera, const GroundTrackOptions& options,
@@ -66,15 +78,8 @@ std::vector<TrackedFeature> GroundTracks::track(double t, const cv::Mat& image,
           pixel.y() >= image.rows - kBorderPx ||
           !belowHorizon(x, n_cur, alignment_options_.horizon_margin_deg))
         continue;
-      TrackedFeature f;
-      f.id = p.id;
-      f.plane_id = kGroundLabel;
-      f.pixel = pixel;
-      f.normalized = x;
-      f.velocity = (x - p.normalized) / dt;
-      f.track_length = p.length + 1;
-      published.push_back(f);
       kept.push_back({p.id, pixel, x, p.length + 1});
+      published.push_back(feature(kept.back(), (x - p.normalized) / dt));
     }
     points_ = std::move(kept);
   } else {
@@ -85,14 +90,8 @@ std::vector<TrackedFeature> GroundTracks::track(double t, const cv::Mat& image,
   if (ground_down) {
     const size_t before = points_.size();
     spawn(image.size(), *ground_down, next_id);
-    for (size_t i = before; i < points_.size(); ++i) {
-      TrackedFeature f;
-      f.id = points_[i].id;
-      f.plane_id = kGroundLabel;
-      f.pixel = points_[i].pixel;
-      f.normalized = points_[i].normalized;
-      published.push_back(f);
-    }
+    for (size_t i = before; i < points_.size(); ++i)
+      published.push_back(feature(points_[i], Eigen::Vector2d::Zero()));
   }
   previous_ = std::move(pyramid);
   previous_t_ = t;

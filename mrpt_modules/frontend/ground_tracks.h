@@ -37,12 +37,13 @@ class GroundTracks {
   /// The last image pair's alignment (none on the first image or without rotation).
   const std::optional<GroundAligner::Result>& lastAlignment() const { return last_; }
 
- private:
   struct Point {
     int id;
     Eigen::Vector2d pixel, normalized;
-    int length;
+    int length;  // images it was seen in
   };
+
+ private:
   bool belowHorizon(const Eigen::Vector2d& normalized, const Eigen::Vector3d& down,
                     double margin_deg) const;
   void spawn(const cv::Size& size, const Eigen::Vector3d& down, int& next_id);
