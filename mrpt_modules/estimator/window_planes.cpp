@@ -45,12 +45,16 @@ std::optional<std::pair<Eigen::Vector3d, double>> fitPlane(
   return std::pair{n, n.dot(mean)};
 }
 
-/// World points of the label's triangulated tracks seen at least 3 times.
+/// World points of the label's triangulated tracks seen at least 3 times; the ground's twice: its
+/// tracks live a few images (GroundTracks' max_length), and few reach a third keyframe at a car's
+/// speed (kitti07 started at frame 40: 1–12 such points per window for 7 s, no ground plane).
 std::vector<Eigen::Vector3d> pointsOfPlane(int plane, const FeatureManager& features,
                                            const CameraPoseLookup& cameras) {
+  const size_t min_observations = plane == kGroundLabel ? 2 : 3;
   std::vector<Eigen::Vector3d> points;
   for (const auto& [id, track] : features.tracks())
-    if (track.plane_id == plane && track.triangulated && track.observations.size() >= 3)
+    if (track.plane_id == plane && track.triangulated &&
+        track.observations.size() >= min_observations)
       points.push_back(features.worldPoint(track, cameras));
   return points;
 }

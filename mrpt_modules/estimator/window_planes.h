@@ -37,8 +37,8 @@ class WindowPlanes {
   void choose(const FeatureManager& features, const std::set<int>* eligible = nullptr);
   const std::set<int>& chosen() const { return used_; }
   /// Parameters for the chosen planes without: the map's entry of the label, else a fit of the
-  /// plane's triangulated features (seen 3 times) when at least kMinPlanePoints and planar within
-  /// kMaxPlaneRmsPerDepth of their distance to the newest camera.
+  /// plane's triangulated features (seen 3 times, the ground's twice) when at least kMinPlanePoints
+  /// and planar within kMaxPlaneRmsPerDepth of their distance to the newest camera.
   void initialize(const FeatureManager& features, const CameraPoseLookup& cameras,
                   const Eigen::Vector3d& newest_camera, const PlanesMap& map);
   /// Labels with kMinPlanePoints tracks in use or more.

@@ -1,5 +1,6 @@
 // WindowPlanes::choose: the labels whose features get homography factors, among every plane or
-// among those a verification found static. WindowPlanes::fittedObservations: the planes without
+// among those a verification found static. WindowPlanes::initialize: a chosen plane's parameters
+// from its tracks, the ground's seen twice. WindowPlanes::fittedObservations: the planes without
 // parameters in the window, fitted to their points for the map.
 #include <gtest/gtest.h>
 
@@ -51,12 +52,13 @@ TEST(WindowPlanes, OnlyEligiblePlanesAreChosen) {
   EXPECT_TRUE(largest.chosen().empty());
 }
 
-/// Three frames of a camera at the world's origin looking along z, 30 tracks per plane over a
-/// grid of rays, each on its plane n·X = d (depth d / n·ray) or, for a label in `scattered`, at
-/// depths 2–5 m that no plane fits.
+/// `frames` frames (3 unless set) of a camera at the world's origin looking along z, 30 tracks per
+/// plane over a grid of rays, each on its plane n·X = d (depth d / n·ray) or, for a label in
+/// `scattered`, at depths 2–5 m that no plane fits.
 struct PlanarTracks {
   std::map<int, std::pair<Eigen::Vector3d, double>> planes;
   std::set<int> scattered;
+  uint64_t frames = 3;
   FeatureManager features;
   CameraPoseLookup cameras = [](uint64_t) { return Eigen::Isometry3d::Identity(); };
 
@@ -75,13 +77,38 @@ struct PlanarTracks {
                                              : plane.second / plane.first.dot(ray);
         frame.features.push_back(f);
       }
-    for (uint64_t k = 0; k < 3; ++k) features.addFrame(k, frame);
+    for (uint64_t k = 0; k < frames; ++k) features.addFrame(k, frame);
     for (auto& [track_id, track] : features.tracks()) {
       track.inv_depth[0] = 1.0 / depth.at(track_id);
       track.triangulated = true;
     }
   }
 };
+
+TEST(WindowPlanes, TheGroundGetsParametersFromTracksSeenTwiceOtherPlanesNeedThree) {
+  // The ground's tracks live a few images (GroundTracks): seen twice, a plane of them is fitted;
+  // a wall's tracks seen twice are too young.
+  PlanarTracks scene;
+  scene.planes[kGroundLabel] = {Eigen::Vector3d(0, 0.8, 0.6), 1.6};  // the road ahead
+  scene.planes[2] = {Eigen::Vector3d(0, 0, 1), 8.0};                 // a facade ahead
+  scene.frames = 2;
+  scene.build();
+  WindowPlanes planes(HomographyPlanes::kAll);
+  planes.choose(scene.features);
+  ASSERT_EQ(planes.chosen(), (std::set<int>{2, kGroundLabel}));
+  planes.initialize(scene.features, scene.cameras, Eigen::Vector3d::Zero(), PlanesMap{});
+  ASSERT_EQ(planes.estimates().size(), 1u);
+  const PlaneEstimate& ground = planes.estimates().begin()->second;
+  EXPECT_EQ(planes.estimates().begin()->first, kGroundLabel);
+  EXPECT_LT((Eigen::Vector3d(ground.normal) - Eigen::Vector3d(0, 0.8, 0.6)).norm(), 1e-9);
+  EXPECT_NEAR(ground.distance[0], 1.6, 1e-9);
+  // A third frame: the facade too.
+  PlanarTracks older;
+  older.planes = scene.planes;
+  older.build();
+  planes.initialize(older.features, older.cameras, Eigen::Vector3d::Zero(), PlanesMap{});
+  EXPECT_EQ(planes.estimates().size(), 2u);
+}
 
 TEST(WindowPlanes, PlanesWithoutParametersAreFittedForTheMapOneVisitPerStay) {
   PlanarTracks scene;
