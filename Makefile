@@ -36,9 +36,10 @@ test-asan: deps
 	cmake --build build-asan -j$(JOBS)
 	$(ASAN_CTEST) $(ASAN_CTEST_ARGS)
 
-# What CI runs besides `make test`: the tests of the input readers, front-end, planes map, IMU and
-# factors under ASan + UBSan (the whole suite under sanitizers does not fit CI's time).
-ASAN_QUICK_AREAS = rawlog_io rosbag_io frontend planes_map imu factors
+# What CI runs besides `make test`, area by area as its time allows (.ci/run): the tests of the
+# input readers, front-end, planes map, IMU, factors, core, common and initializer under ASan +
+# UBSan (the whole suite under sanitizers does not fit CI's time).
+ASAN_QUICK_AREAS = rawlog_io rosbag_io frontend planes_map imu factors core common initialization
 test-asan-quick: deps
 	$(ASAN_CONFIGURE)
 	cmake --build build-asan -j$(JOBS) --target $(addprefix test_,$(ASAN_QUICK_AREAS))
