@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "mrpt_modules/estimator/estimator_problem.h"
+#include "mrpt_modules/factors/camera_height_factor.h"
 #include "mrpt_modules/factors/homography_factor.h"
 #include "mrpt_modules/factors/imu_factor.h"
 #include "mrpt_modules/factors/parameter_blocks.h"
@@ -167,6 +168,20 @@ bool BatchRefinement::solve() {
       ++homographies;
     }
   }
+  size_t camera_heights = 0;
+  for (const auto& k : keyframes) {
+    const auto ground = k.ground_label >= 0 && options_.camera_height > 0
+                            ? plane_blocks.find(plane_of_label_(k.ground_label))
+                            : plane_blocks.end();
+    if (ground == plane_blocks.end()) continue;
+    const auto [normal, distance] = ground->second;
+    const Eigen::Vector3d c = cameras.at(k.id).translation();
+    const double side = Eigen::Vector3d(normal).dot(c) >= *distance ? 1 : -1;
+    problem.AddResidualBlock(CameraHeightResidual::create(options_.camera_height, side,
+                                                          1 / options_.camera_height_sigma),
+                             nullptr, pose_of[k.id], mount, normal, distance);
+    ++camera_heights;
+  }
   for (const auto& [plane, block] : plane_blocks)
     problem.SetManifold(block.first, &solve_problem.sphere);
 
@@ -203,9 +218,10 @@ bool BatchRefinement::solve() {
   out << "batch refinement: " << keyframes.size() << " keyframes in " << segments_
       << " IMU-chained segment(s), " << usable.size() << " tracks, " << plane_blocks.size()
       << " planes, " << reprojections << " reprojection and " << homographies
-      << " homography factors (" << long_tracks_ << " long tracks not eliminated); cost "
-      << summary.initial_cost << " -> " << summary.final_cost << " in " << summary.iterations.size()
-      << " iterations, " << summary.total_time_in_seconds << " s";
+      << " homography factors, " << camera_heights << " camera heights (" << long_tracks_
+      << " long tracks not eliminated); cost " << summary.initial_cost << " -> "
+      << summary.final_cost << " in " << summary.iterations.size() << " iterations, "
+      << summary.total_time_in_seconds << " s";
   report_ = out.str();
   seconds_ = summary.total_time_in_seconds;
   if (!summary.IsSolutionUsable()) return false;

@@ -25,6 +25,9 @@ struct ArchivedKeyframe {
   double pose[7] = {0, 0, 0, 0, 0, 0, 1};  // body in world [p, q]
   double speed_bias[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
   std::shared_ptr<const ImuPreintegration> to_next;  // null: no IMU factor to the next keyframe
+  // The label of the window's ground plane when the window held this keyframe's camera at
+  // calib.ini's camera_height over it (camera_height_factor.h); -1: none.
+  int ground_label = -1;
 };
 
 /// A track's observation in a keyframe.
@@ -72,6 +75,10 @@ struct BatchRefinementOptions {
   int max_eliminated_track_span = 60;
   double min_parallax_rad = 1.0 * M_PI / 180;  // a track's rays must span this to get factors
   size_t min_plane_tracks = 10;                // homography factors on planes with this many
+  // calib.ini's [ground] camera_height (m; 0: none) and the window's camera_height_sigma: the
+  // keyframes the window held over its ground stay that high over the ground's map plane.
+  double camera_height = 0;
+  double camera_height_sigma = 0.05;
 };
 
 class BatchRefinement {

@@ -149,6 +149,7 @@ void SlidingWindowEstimator::archiveKeyframe(const Frame& frame, const Frame* ne
   k.t = frame.features.t;
   std::copy(frame.pose, frame.pose + 7, k.pose);
   std::copy(frame.speed_bias, frame.speed_bias + 9, k.speed_bias);
+  if (ground_) k.ground_label = ground_->plane;
   // The window's factor, noise inflated (with the calibration's noise the refined trajectories of
   // the simulated static sequences were 1.0-2.3x worse).
   if (next) k.to_next = next->imu_from_previous;
@@ -186,6 +187,10 @@ void SlidingWindowEstimator::finishMap() {
   end.refinement.gravity = calib_.imu.gravity;
   end.refinement.min_parallax_rad = options_.min_triangulation_angle_deg * M_PI / 180;
   end.refinement.min_plane_tracks = kMinPlanePoints;
+  if (options_.camera_height_sigma > 0) {
+    end.refinement.camera_height = calib_.camera_height;
+    end.refinement.camera_height_sigma = options_.camera_height_sigma;
+  }
   std::copy(mount_, mount_ + 7, end.mount);
   map_.windowFinished(end);
 }

@@ -23,6 +23,7 @@ struct Scenario {
   std::map<int, PlaneEstimate> planes;   // by label (the map id here), started off the truth
   std::map<int, sim::ScenePlane> true_planes;
   double mount[7];
+  double camera_height = 0;  // the calibration's (level_flight)
 };
 
 /// Keyframes every 0.25 s from 0.5 s; a 12x10 grid of plane points born every second, seen 3 s.
@@ -30,13 +31,16 @@ struct Scenario {
 /// estimate whose gravity direction was off, everything else consistent with it), the planes
 /// tilted by 1 deg more and moved by 5 cm. With `break_after`, the IMU chain breaks after the
 /// keyframe at that time (as at a reset). `noise`: the observations' Gaussian noise (normalized
-/// image units, a fixed seed).
-void build(Scenario& s, double tilt_deg, double break_after = -1, double noise = 0) {
+/// image units, a fixed seed). `level_flight`: at a constant height (no wave, no take-off push),
+/// every keyframe held over the floor at the calibration's camera_height (ground_label).
+void build(Scenario& s, double tilt_deg, double break_after = -1, double noise = 0,
+           bool level_flight = false) {
   std::mt19937 rng(7);
   std::normal_distribution<double> gauss(0, noise);
   sim::SimConfig config;
   config.duration = kDuration;
   config.imu_noise = false;
+  if (level_flight) config.flight.height_amplitude = config.flight.start_push = 0;
   sim::Simulator sim(config);
   const auto imu = sim.imuStream();
   const Eigen::Vector3d center = sim.bodyPose(0.5).translation();
@@ -46,6 +50,14 @@ void build(Scenario& s, double tilt_deg, double break_after = -1, double noise =
   start_error.translation() = center - start_error.linear() * center;
   const Calibration calib = sim.calibration();
   setPoseBlock(calib.T_BC, s.mount);
+  s.camera_height = calib.camera_height;
+  int floor = -1;  // the lowest upward-facing plane
+  double floor_height = 0;
+  for (const auto& p : sim.scene().planes())
+    if (p.normal.z() > 0.99 && (floor < 0 || p.distance() < floor_height)) {
+      floor = p.id;
+      floor_height = p.distance();
+    }
   FeatureManager features;
   struct Landmark {
     Eigen::Vector3d point;
@@ -82,6 +94,7 @@ void build(Scenario& s, double tilt_deg, double break_after = -1, double noise =
     ArchivedKeyframe k;
     k.id = id;
     k.t = t;
+    if (level_flight) k.ground_label = floor;
     s.truth.push_back(sim.bodyPose(t));
     setPoseBlock(start_error * s.truth.back(), k.pose);
     const Eigen::Vector3d v = start_error.linear() * state.v;
@@ -196,6 +209,40 @@ TEST(BatchRefinement, LongTracksKeptInTheReducedSystemGiveTheSameSolution) {
         1e-6);
   for (const auto& [label, p] : eliminated.planes)
     EXPECT_NEAR(p.distance[0], kept.planes.at(label).distance[0], 1e-6);
+}
+
+// The keyframes the window held over its ground keep calib.ini's camera height over the ground's
+// map plane: given 10 cm more than the truth with a 1 mm sigma, the refined cameras stand that
+// high over the refined floor; without the marks, at the truth.
+TEST(BatchRefinement, KeyframesHeldOverTheGroundKeepTheCameraHeight) {
+  for (const bool given : {false, true}) {
+    Scenario s;
+    build(s, 0.0, -1, 0, true);
+    ASSERT_GT(s.camera_height, 0);
+    int floor = -1;
+    for (const auto& [label, p] : s.true_planes)
+      if (p.normal.z() > 0.99) floor = label;
+    ASSERT_GE(floor, 0) << "the floor has homography factors";
+    BatchRefinementOptions options;
+    options.weight = 320;
+    if (given) {
+      options.camera_height = s.camera_height + 0.10;
+      options.camera_height_sigma = 0.001;
+    }
+    BatchRefinement batch(
+        s.archive, s.mount, [](int label) { return label; }, s.planes, options);
+    ASSERT_TRUE(batch.solve());
+    std::printf("%s\n", batch.report().c_str());
+    const Eigen::Vector3d n(s.planes.at(floor).normal);
+    const double d = s.planes.at(floor).distance[0];
+    const Eigen::Isometry3d T_BC = poseIsometry(s.mount);
+    double sum = 0;
+    const auto refined = s.archive.trajectory();
+    for (const auto& k : refined)
+      sum += std::abs(n.dot((poseIsometry(k.pose) * T_BC).translation()) - d);
+    const double mean = sum / refined.size();
+    EXPECT_NEAR(mean, s.camera_height + (given ? 0.10 : 0.0), 0.01) << "given " << given;
+  }
 }
 
 }  // namespace
