@@ -170,9 +170,8 @@ bool BatchRefinement::solve() {
   }
   size_t camera_heights = 0;
   for (const auto& k : keyframes) {
-    const auto ground = k.ground_label >= 0 && options_.camera_height > 0
-                            ? plane_blocks.find(plane_of_label_(k.ground_label))
-                            : plane_blocks.end();
+    if (options_.camera_height <= 0 || k.ground_label < 0) continue;
+    const auto ground = plane_blocks.find(plane_of_label_(k.ground_label));
     if (ground == plane_blocks.end()) continue;
     const auto [normal, distance] = ground->second;
     const Eigen::Vector3d c = cameras.at(k.id).translation();

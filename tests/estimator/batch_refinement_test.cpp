@@ -24,6 +24,7 @@ struct Scenario {
   std::map<int, sim::ScenePlane> true_planes;
   double mount[7];
   double camera_height = 0;  // the calibration's (level_flight)
+  int floor = -1;            // the label of the lowest upward-facing plane
 };
 
 /// Keyframes every 0.25 s from 0.5 s; a 12x10 grid of plane points born every second, seen 3 s.
@@ -51,11 +52,10 @@ void build(Scenario& s, double tilt_deg, double break_after = -1, double noise =
   const Calibration calib = sim.calibration();
   setPoseBlock(calib.T_BC, s.mount);
   s.camera_height = calib.camera_height;
-  int floor = -1;  // the lowest upward-facing plane
   double floor_height = 0;
   for (const auto& p : sim.scene().planes())
-    if (p.normal.z() > 0.99 && (floor < 0 || p.distance() < floor_height)) {
-      floor = p.id;
+    if (p.normal.z() > 0.99 && (s.floor < 0 || p.distance() < floor_height)) {
+      s.floor = p.id;
       floor_height = p.distance();
     }
   FeatureManager features;
@@ -94,7 +94,7 @@ void build(Scenario& s, double tilt_deg, double break_after = -1, double noise =
     ArchivedKeyframe k;
     k.id = id;
     k.t = t;
-    if (level_flight) k.ground_label = floor;
+    if (level_flight) k.ground_label = s.floor;
     s.truth.push_back(sim.bodyPose(t));
     setPoseBlock(start_error * s.truth.back(), k.pose);
     const Eigen::Vector3d v = start_error.linear() * state.v;
@@ -219,10 +219,8 @@ TEST(BatchRefinement, KeyframesHeldOverTheGroundKeepTheCameraHeight) {
     Scenario s;
     build(s, 0.0, -1, 0, true);
     ASSERT_GT(s.camera_height, 0);
-    int floor = -1;
-    for (const auto& [label, p] : s.true_planes)
-      if (p.normal.z() > 0.99) floor = label;
-    ASSERT_GE(floor, 0) << "the floor has homography factors";
+    const int floor = s.floor;
+    ASSERT_TRUE(s.true_planes.count(floor)) << "the floor has homography factors";
     BatchRefinementOptions options;
     options.weight = 320;
     if (given) {
