@@ -246,7 +246,12 @@ InitializationResult Initializer::attempt(const Frames& all_frames, const Preint
   const size_t l = chosen->i, r = chosen->j;
   const int plane = chosen->plane;
   // Structure of the whole window, bundle adjustment (gauge: camera l and the scale unit).
-  if (!buildWindowStructure(window, l, r, j_in_i, WindowStructureOptions{}, &why))
+  WindowStructureOptions structure;
+  structure.camera_rotation = [&](size_t a, size_t b) {
+    return a < b ? gyroCameraRotation(imu, a, b, R_BC)
+                 : Eigen::Matrix3d(gyroCameraRotation(imu, b, a, R_BC).transpose());
+  };
+  if (!buildWindowStructure(window, l, r, j_in_i, structure, &why))
     return failure(InitStatus::kGeometryFailed, why);
   BundleAdjustmentGauge gauge;
   gauge.fixed_frame = l;

@@ -46,10 +46,14 @@ void addPoints(SfmWindow& window, size_t k, const WindowStructureOptions& option
 }
 
 /// Locates frame k by PnP from its neighbour's pose: on the points of the known planes when there
-/// are enough, else on all points. Points off the planes that disagree with the pose are dropped
-/// (triangulated again later from other rays).
+/// are enough, else on all points; else its position alone on all points, its rotation the
+/// neighbour's turned by the gyroscope's. Points off the planes that disagree with the pose are
+/// dropped (triangulated again later from other rays).
 bool locate(SfmWindow& window, size_t k, size_t neighbour, const WindowStructureOptions& options) {
-  for (const bool planes_only : {true, false}) {
+  const bool known_rotation_allowed = static_cast<bool>(options.camera_rotation);
+  for (const int attempt : {0, 1, 2}) {
+    const bool planes_only = attempt == 0, known_rotation = attempt == 2;
+    if (known_rotation && !known_rotation_allowed) continue;
     if (planes_only && window.planes.empty()) continue;
     std::vector<Eigen::Vector3d> points;
     std::vector<Eigen::Vector2d> u;
@@ -61,8 +65,15 @@ bool locate(SfmWindow& window, size_t k, size_t neighbour, const WindowStructure
     }
     if (planes_only && points.size() < 2 * options.pnp.min_points) continue;
     std::vector<bool> inlier;
-    window.cameras[k] =
-        cameraPoseFromPnp(points, u, window.cameras[neighbour], options.pnp, &inlier);
+    if (known_rotation)
+      // X_r = R_r_n X_n and X_n = Rᵀ X_k with R the rotation from the neighbour to k.
+      window.cameras[k] = cameraPositionFromKnownRotation(
+          points, u,
+          window.cameras[neighbour]->R_r_c * options.camera_rotation(neighbour, k).transpose(),
+          options.min_known_rotation_points, options.pnp, &inlier);
+    else
+      window.cameras[k] =
+          cameraPoseFromPnp(points, u, window.cameras[neighbour], options.pnp, &inlier);
     if (!window.cameras[k]) continue;
     for (size_t i = 0; i < used.size(); ++i)
       if (!inlier[i] && !window.planes.count(used[i]->plane_id)) used[i]->X_r.reset();

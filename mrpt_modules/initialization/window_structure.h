@@ -3,8 +3,11 @@
 // SfM, with RP-VIO's planes): points of the pair, then every other frame by PnP on the points
 // known so far (forward from the pair's first frame, then backward), each new frame adding the
 // points it can: features of a known plane by intersecting their ray with the plane, the others by
-// two-view triangulation with an earlier solved observation. Once every frame is located, the
-// points off the known planes are triangulated again from their two most divergent rays.
+// two-view triangulation with an earlier solved observation. A frame that sees too few points for
+// a PnP is placed by its position alone, its rotation the gyroscope's from the frame it is located
+// from. Once every frame is located, the points off the known planes are triangulated again from
+// their two most divergent rays.
+#include <functional>
 #include <string>
 
 #include "mrpt_modules/initialization/camera_pnp.h"
@@ -15,6 +18,10 @@ namespace rpvio {
 struct WindowStructureOptions {
   PnpOptions pnp;
   double min_triangulation_angle_deg = 2.0;  // between the two rays of a triangulated point
+  /// The cameras' rotation from frame a to frame b, X_cb = R X_ca (the gyroscope's); unset: a
+  /// frame with too few points for a PnP loses the structure.
+  std::function<Eigen::Matrix3d(size_t a, size_t b)> camera_rotation;
+  size_t min_known_rotation_points = 3;  // for a position alone (two fix it; one more checks)
 };
 
 /// `window.cameras[l]` becomes the identity and `window.cameras[r]` = `r_in_l`; the planes already

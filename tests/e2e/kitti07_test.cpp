@@ -5,11 +5,14 @@
 // at least 87 %, no reset) and rpvio-auto is within the 0.9 m and no worse than vins-mono.
 // The stamps of the outputs (stamps of 1.6e9 s) read back as the input's to the microsecond. The
 // same sequence started 4 s later, the car at 4.5 m/s: the road is mapped within 2 s of the start.
+// The same images at 40 % of their contrast, with noise: rpvio-auto still starts within 3 s.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <opencv2/imgcodecs.hpp>
 #include <set>
 #include <sstream>
 
@@ -80,9 +83,11 @@ void copyFrom(const std::string& from, const std::string& to, long long t0_ns, b
   }
 }
 
-/// kitti07_vio from its frame `first` on, as an EuRoC folder in `dir` (the images linked); the
-/// ground truth's path.
-std::string laterStart(const test::TempDir& dir, int first) {
+/// kitti07_vio from its frame `first` on, as an EuRoC folder in `dir`: the images linked, or
+/// written as `reimage` makes them of the original (with the frame's index); the ground truth's
+/// path.
+std::string copiedKitti07(const test::TempDir& dir, int first,
+                          const std::function<cv::Mat(const cv::Mat&, int)>& reimage = nullptr) {
   namespace fs = std::filesystem;
   const fs::path mav0 = dir.file("mav0");
   fs::create_directories(mav0 / "cam0" / "data");
@@ -100,7 +105,12 @@ std::string laterStart(const test::TempDir& dir, int first) {
     if (t0 < 0) t0 = std::stoll(line);
     kept << line << '\n';
     const std::string name = line.substr(line.find(',') + 1);
-    fs::create_symlink(kData + "/mav0/cam0/data/" + name, mav0 / "cam0" / "data" / name);
+    const std::string original = kData + "/mav0/cam0/data/" + name;
+    if (reimage)
+      cv::imwrite((mav0 / "cam0" / "data" / name).string(),
+                  reimage(cv::imread(original, cv::IMREAD_GRAYSCALE), index));
+    else
+      fs::create_symlink(original, mav0 / "cam0" / "data" / name);
   }
   for (const char* yaml : {"cam0/sensor.yaml", "imu0/sensor.yaml"})
     fs::copy_file(kData + "/mav0/" + yaml, mav0 / yaml);
@@ -207,7 +217,7 @@ TEST(Kitti07, TheRoadIsMappedSoonAfterALaterStart) {
   // road's plane gets parameters from tracks seen twice. Seen 3 times, as other planes need, it
   // entered the map 6.8 s after the initialization.
   test::TempDir dir("kitti07_later");
-  const std::string ground_truth = laterStart(dir, 40);
+  const std::string ground_truth = copiedKitti07(dir, 40);
   ASSERT_NO_FATAL_FAILURE(importKitti07(dir, dir.file("mav0"), ground_truth));
   const Evaluated e = run(dir, "rpvio-auto", "", "calib.ini", ground_truth);
   EXPECT_GE(e.coverage, 0.87);
@@ -220,6 +230,31 @@ TEST(Kitti07, TheRoadIsMappedSoonAfterALaterStart) {
   const double initialized_at =
       jsonNumber(test::readFile(dir.file("rpvio-auto/summary.json")), "initialized_at");
   EXPECT_LE(first_seen - initialized_at, 2.0);  // measured 0.9 s
+}
+
+TEST(Kitti07, RpvioAutoStartsOnDimNoisyImages) {
+  // Every image at 40 % of its contrast (I' = 0.4 I + 50) with Gaussian noise of 3 grey levels:
+  // short tracks, so the initialization window's frames see few of the points its first pair
+  // triangulated. Those with too few for a PnP are placed by their position alone, with the
+  // gyroscope's rotation; before, the structure was lost at such a frame until 8.1 s (coverage
+  // 76 %).
+  test::TempDir dir("kitti07_dim");
+  const std::string ground_truth = copiedKitti07(dir, 0, [](const cv::Mat& image, int index) {
+    cv::Mat dim, noise(image.size(), CV_32F);
+    image.convertTo(dim, CV_32F, 0.4, 50);
+    cv::RNG(index).fill(noise, cv::RNG::NORMAL, 0, 3);
+    dim += noise;
+    dim.convertTo(dim, CV_8U);
+    return dim;
+  });
+  ASSERT_NO_FATAL_FAILURE(importKitti07(dir, dir.file("mav0"), ground_truth));
+  const Evaluated e = run(dir, "rpvio-auto", "", "calib.ini", ground_truth);
+  const double initialized_at =
+      jsonNumber(test::readFile(dir.file("rpvio-auto/summary.json")), "initialized_at");
+  EXPECT_LE(initialized_at - 1600000000.0, 3.0);  // the first frame's stamp; measured 2.80 s
+  EXPECT_GE(e.coverage, 0.87);                    // measured 100 %
+  EXPECT_EQ(e.resets, 0);
+  EXPECT_LE(e.ate, 0.9);  // measured 0.56 m
 }
 
 }  // namespace
