@@ -25,6 +25,8 @@ std::optional<CameraPose> cameraPoseFromPnp(const std::vector<Eigen::Vector3d>& 
                                             const PnpOptions& options = {},
                                             std::vector<bool>* inlier = nullptr);
 
+constexpr size_t kMaxKnownRotationHypothesisPoints = 40;
+
 /// The camera of rotation R_r_c (known, e.g. the gyroscope's from a located neighbour) that sees
 /// points_r[k] at normalized u[k]: each point gives two linear equations in its position p,
 /// [u; 1]× R_r_cᵀ (X − p) = 0. Solved for every pair of points (the first
@@ -36,6 +38,5 @@ std::optional<CameraPose> cameraPositionFromKnownRotation(
     const std::vector<Eigen::Vector3d>& points_r, const std::vector<Eigen::Vector2d>& u,
     const Eigen::Matrix3d& R_r_c, size_t min_points, const PnpOptions& options = {},
     std::vector<bool>* inlier = nullptr);
-constexpr size_t kMaxKnownRotationHypothesisPoints = 40;
 
 }  // namespace rpvio

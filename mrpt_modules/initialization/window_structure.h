@@ -3,10 +3,10 @@
 // SfM, with RP-VIO's planes): points of the pair, then every other frame by PnP on the points
 // known so far (forward from the pair's first frame, then backward), each new frame adding the
 // points it can: features of a known plane by intersecting their ray with the plane, the others by
-// two-view triangulation with an earlier solved observation. A frame that sees too few points for
-// a PnP is placed by its position alone, its rotation the gyroscope's from the frame it is located
-// from. Once every frame is located, the points off the known planes are triangulated again from
-// their two most divergent rays.
+// two-view triangulation with an earlier solved observation. A frame the PnP cannot place (too few
+// points) is placed by its position alone, its rotation the gyroscope's from the frame it is
+// located from. Once every frame is located, the points off the known planes are triangulated again
+// from their two most divergent rays.
 #include <functional>
 #include <string>
 
