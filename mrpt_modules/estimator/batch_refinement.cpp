@@ -19,12 +19,16 @@ namespace rpvio {
 
 std::vector<ArchivedObservation> keyframeObservations(
     uint64_t frame_id, const FeatureManager& features,
-    const std::function<bool(const FeatureTrack&)>& in_use) {
+    const std::function<bool(const FeatureTrack&)>& in_use, const CameraPoseLookup& cameras) {
   std::vector<ArchivedObservation> out;
   for (const auto& [id, track] : features.tracks()) {
     if (!in_use(track)) continue;
-    for (const auto& o : track.observations)
-      if (o.frame == frame_id) out.push_back({id, track.plane_id, o});
+    for (const auto& o : track.observations) {
+      if (o.frame != frame_id) continue;
+      out.push_back({id, track.plane_id, o, std::nullopt});
+      if (track.triangulated && track.inv_depth[0] > 0)
+        out.back().world = features.worldPoint(track, cameras);
+    }
   }
   return out;
 }

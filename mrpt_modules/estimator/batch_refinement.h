@@ -11,6 +11,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "mrpt_modules/estimator/estimator_types.h"
@@ -35,12 +36,14 @@ struct ArchivedObservation {
   int id = -1;  // feature id
   int plane_id = 0;
   TrackObservation observation;
+  std::optional<Eigen::Vector3d> world;  // the track's point in the world, when triangulated
 };
 
-/// The observations keyframe `frame_id` holds of the tracks `in_use`.
+/// The observations keyframe `frame_id` holds of the tracks `in_use`, with their points as the
+/// window's `cameras` place them.
 std::vector<ArchivedObservation> keyframeObservations(
     uint64_t frame_id, const FeatureManager& features,
-    const std::function<bool(const FeatureTrack&)>& in_use);
+    const std::function<bool(const FeatureTrack&)>& in_use, const CameraPoseLookup& cameras);
 
 /// Keyframes as they leave the window, with the observations of the tracks in use.
 class KeyframeArchive {

@@ -153,7 +153,7 @@ void SlidingWindowEstimator::archiveKeyframe(const Frame& frame, const Frame* ne
   // The window's factor, noise inflated (with the calibration's noise the refined trajectories of
   // the simulated static sequences were 1.0-2.3x worse).
   if (next) k.to_next = next->imu_from_previous;
-  left.observations = keyframeObservations(frame.id, features_, inUse);
+  left.observations = keyframeObservations(frame.id, features_, inUse, cameraLookup());
   map_.keyframeLeft(left);
 }
 

@@ -46,9 +46,6 @@ struct GroundAlignmentOptions {
 using GreyPyramid = std::vector<cv::Mat>;
 GreyPyramid buildGreyPyramid(const cv::Mat& image, int levels);
 
-/// Normalized coordinates (z = 1) to distorted pixels, the calibration's model.
-Eigen::Vector2d distortToPixel(const Eigen::Vector2d& normalized, const CameraIntrinsics& camera);
-
 class GroundAligner {
  public:
   GroundAligner(const CameraIntrinsics& camera, const GroundAlignmentOptions& options);

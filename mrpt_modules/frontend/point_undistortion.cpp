@@ -1,5 +1,6 @@
 #include "mrpt_modules/frontend/point_undistortion.h"
 
+#include <cmath>
 #include <opencv2/calib3d.hpp>
 
 namespace rpvio {
@@ -22,6 +23,22 @@ std::vector<cv::Point2f> undistortToNormalized(const std::vector<cv::Point2f>& p
     cv::undistortPoints(pixels, out, K, D);
   }
   return out;
+}
+
+Eigen::Vector2d distortToPixel(const Eigen::Vector2d& x, const CameraIntrinsics& camera) {
+  const auto& k = camera.distortion;
+  Eigen::Vector2d d = x;
+  const double r2 = x.squaredNorm();
+  if (camera.model == DistortionModel::RadTan) {
+    const double radial = 1 + k[0] * r2 + k[1] * r2 * r2;
+    d = {x.x() * radial + 2 * k[2] * x.x() * x.y() + k[3] * (r2 + 2 * x.x() * x.x()),
+         x.y() * radial + k[2] * (r2 + 2 * x.y() * x.y()) + 2 * k[3] * x.x() * x.y()};
+  } else if (camera.model == DistortionModel::Equidistant && r2 > 1e-18) {
+    const double r = std::sqrt(r2), theta = std::atan(r), t2 = theta * theta;
+    const double theta_d = theta * (1 + t2 * (k[0] + t2 * (k[1] + t2 * (k[2] + t2 * k[3]))));
+    d = x * (theta_d / r);
+  }
+  return {camera.fx * d.x() + camera.cx, camera.fy * d.y() + camera.cy};
 }
 
 }  // namespace rpvio

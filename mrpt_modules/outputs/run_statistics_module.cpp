@@ -64,6 +64,21 @@ std::vector<JsonObject> discoveriesJson(const std::vector<PlaneDiscoveryEvent>& 
   return out;
 }
 
+/// One object per revisit found by appearance:
+/// `{"t": ..., "t_old": ..., "score": ..., "accepted": true, "why": "", "inliers": 61}`.
+std::vector<JsonObject> loopsJson(const std::vector<LoopEvent>& events) {
+  std::vector<JsonObject> out;
+  for (const LoopEvent& e : events)
+    out.push_back(JsonObject()
+                      .stamp("t", e.t)
+                      .stamp("t_old", e.t_old)
+                      .number("score", e.score)
+                      .flag("accepted", e.check.accepted)
+                      .text("why", e.check.why)
+                      .integer("inliers", e.check.inliers));
+  return out;
+}
+
 }  // namespace
 
 void RunStatisticsModule::initialize(const IniFile&, const std::string& section,
@@ -80,6 +95,7 @@ void RunStatisticsModule::initialize(const IniFile&, const std::string& section,
   context.bus.subscribe<RunEnd>([this](const RunEnd& e) { end_ = e; });
   context.bus.subscribe<EstimatorSummary>([this](const EstimatorSummary& s) { estimator_ = s; });
   context.bus.subscribe<MapSummary>([this](const MapSummary& s) { map_ = s; });
+  context.bus.subscribe<LoopClosureSummary>([this](const LoopClosureSummary& s) { loops_ = s; });
   setOptionsText("[" + section + "]\n");
 }
 
@@ -161,8 +177,17 @@ void RunStatisticsModule::write(double wall) const {
       .integer("map_planes", static_cast<long long>(map_planes))
       .integer("tentative_planes", static_cast<long long>(tentative_planes))
       .number("refinement_s", m.refinement_s)
-      .text("refinement", m.refinement_report)
-      .text("status", estimator_ ? e.status : "no estimator");
+      .text("refinement", m.refinement_report);
+  if (loops_) {
+    const auto accepted = std::count_if(loops_->events.begin(), loops_->events.end(),
+                                        [](const LoopEvent& e) { return e.check.accepted; });
+    summary.integer("loop_keyframes", static_cast<long long>(loops_->keyframes))
+        .integer("loops_found", static_cast<long long>(loops_->events.size()))
+        .integer("loops_accepted", accepted)
+        .integer("loops_rejected", static_cast<long long>(loops_->events.size()) - accepted)
+        .objects("loops", loopsJson(loops_->events));
+  }
+  summary.text("status", estimator_ ? e.status : "no estimator");
   writeFileAtomically(path("summary.json"), [&](std::ostream& s) { s << summary.str(); });
 }
 

@@ -6,8 +6,9 @@
 //                 order), total_ms (their sum: the frame's cost)
 //   summary.json  frames, poses, completeness (RunEnd), the estimator's summary (initialization,
 //                 time offset, resets, last status), the map's (MapSummary: size, batch
-//                 refinement), timing medians
-//                 and 95th percentiles, real-time factor, peak memory.
+//                 refinement), the loop closure's (LoopClosureSummary: revisits found, accepted,
+//                 rejected and why), timing medians and 95th percentiles, real-time factor,
+//                 peak memory.
 // Listed after the modules it records: it sees each frame once they have processed it.
 #include <chrono>
 #include <optional>
@@ -16,6 +17,7 @@
 #include "mrpt_modules/core/run_messages.h"
 #include "mrpt_modules/estimator/estimator_types.h"
 #include "mrpt_modules/estimator/map_sink.h"
+#include "mrpt_modules/loop/loop_closure_module.h"
 
 namespace rpvio {
 
@@ -52,6 +54,7 @@ class RunStatisticsModule : public Module {
   RunEnd end_;
   std::optional<EstimatorSummary> estimator_;
   std::optional<MapSummary> map_;
+  std::optional<LoopClosureSummary> loops_;
 };
 
 }  // namespace rpvio

@@ -110,8 +110,9 @@ void build(Scenario& s, double tilt_deg, double break_after = -1, double noise =
         pre->push(imu[i].t - imu[i - 1].t, imu[i].accel, imu[i].gyro);
       k.to_next = pre;
     }
-    s.archive.add(k,
-                  keyframeObservations(k.id, features, [](const FeatureTrack&) { return true; }));
+    s.archive.add(k, keyframeObservations(
+                         k.id, features, [](const FeatureTrack&) { return true; },
+                         [](uint64_t) { return Eigen::Isometry3d::Identity(); }));
     if (std::abs(t - break_after) < 1e-9) s.archive.breakChain();
   }
   // The planes with enough tracks for homography factors (the others keep their start).

@@ -1,0 +1,31 @@
+#pragma once
+// What a keyframe looks like to the loop closure: upright ORB descriptors (Rublee et al., ICCV
+// 2011, with the orientation held at 0: gravity bounds the camera's roll, as VINS-Mono's BRIEF
+// assumes) at corners detected over the whole image and at the keyframe's tracked features; a
+// tracked feature the window triangulated carries its world point.
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+#include <optional>
+#include <vector>
+
+#include "common/sensor_types.h"
+
+namespace rpvio {
+
+struct AppearancePoint {
+  Eigen::Vector2d normalized = Eigen::Vector2d::Zero();  // undistorted, z = 1
+  std::optional<Eigen::Vector3d> world;                  // tracked and triangulated only
+};
+
+struct KeyframeAppearance {
+  std::vector<AppearancePoint> points;
+  cv::Mat descriptors;  // row i (32 bytes) describes points[i]
+};
+
+/// Describes `image` at up to `corners` FAST corners (Harris-ranked, one scale) and at every
+/// `tracked` feature; points too close to the border for a descriptor are left out.
+KeyframeAppearance describeKeyframe(const cv::Mat& image,
+                                    const std::vector<AppearancePoint>& tracked,
+                                    const CameraIntrinsics& camera, int corners);
+
+}  // namespace rpvio

@@ -1,0 +1,80 @@
+#include "mrpt_modules/loop/loop_detector.h"
+
+#include <algorithm>
+
+namespace rpvio {
+
+std::optional<LoopEvent> LoopDetector::add(double t, const Eigen::Isometry3d& body,
+                                           KeyframeAppearance appearance) {
+  keyframes_.push_back({t, body, std::move(appearance)});
+  if (next_training_ == 0) next_training_ = options_.loop_vocabulary_keyframes;
+  if (keyframes_.size() >= next_training_) {
+    trainVocabulary();  // the newest keyframe is in the rebuilt database
+    next_training_ = 2 * keyframes_.size();
+    return query(database_.vector(keyframes_.size() - 1));
+  }
+  if (vocabulary_.empty()) return std::nullopt;
+  const BowVector bow = vocabulary_.transform(keyframes_.back().appearance.descriptors);
+  std::optional<LoopEvent> event = query(bow);
+  database_.add(bow);
+  return event;
+}
+
+void LoopDetector::trainVocabulary() {
+  size_t total = 0;
+  for (const Stored& k : keyframes_) total += k.appearance.descriptors.rows;
+  const size_t stride =
+      std::max<size_t>(1, (total + options_.loop_vocabulary_descriptors - 1) /
+                              std::max<size_t>(options_.loop_vocabulary_descriptors, 1));
+  std::vector<cv::Mat> images;
+  size_t row = 0;
+  for (const Stored& k : keyframes_) {
+    cv::Mat sampled;
+    for (int r = 0; r < k.appearance.descriptors.rows; ++r, ++row)
+      if (row % stride == 0) sampled.push_back(k.appearance.descriptors.row(r));
+    images.push_back(sampled);
+  }
+  vocabulary_ = BinaryVocabulary::train(images, options_.vocabulary);
+  database_.clear();
+  for (const Stored& k : keyframes_) database_.add(vocabulary_.transform(k.appearance.descriptors));
+}
+
+std::optional<LoopEvent> LoopDetector::query(const BowVector& bow) {
+  const Stored& newest = keyframes_.back();
+  const size_t index = keyframes_.size() - 1;  // the database holds the keyframes before it
+  if (index == 0) return std::nullopt;
+  // Candidates: old enough, and scoring at least a share of what the previous keyframe scores
+  // (DBoW2's normalization: a score's scale depends on the place and the vocabulary).
+  const auto old_enough =
+      std::upper_bound(keyframes_.begin(), keyframes_.end() - 1, newest.t - options_.loop_min_age_s,
+                       [](double t, const Stored& k) { return t < k.t; });
+  const size_t before = static_cast<size_t>(old_enough - keyframes_.begin());
+  if (before == 0) return std::nullopt;
+  const double reference = bowScore(bow, database_.vector(index - 1));
+  const auto matches = database_.query(bow, before, options_.loop_min_score_ratio * reference);
+  if (matches.empty()) return std::nullopt;
+  LoopEvent event;
+  for (int c = 0; c < std::min<int>(options_.loop_candidates, static_cast<int>(matches.size()));
+       ++c) {
+    const Stored& old = keyframes_[matches[c].keyframe];
+    const LoopCheck check =
+        verifyLoop(newest.appearance, old.appearance, old.body, T_BC_, options_.check);
+    if (c == 0 || check.accepted) {
+      event.t = newest.t;
+      event.t_old = old.t;
+      event.score = matches[c].score;
+      event.check = check;
+    }
+    if (check.accepted) break;
+  }
+  return event;
+}
+
+void LoopDetector::clear() {
+  keyframes_.clear();
+  database_.clear();
+  vocabulary_ = BinaryVocabulary();
+  next_training_ = 0;
+}
+
+}  // namespace rpvio

@@ -1,0 +1,79 @@
+#pragma once
+// Revisits among the keyframes that left the window: a bag-of-words query (binary_vocabulary.h)
+// over the keyframes older than `loop_min_age_s`, then the geometric check (loop_verification.h)
+// of the best candidates. The vocabulary is trained on the run's own keyframes, when
+// `loop_vocabulary_keyframes` of them are stored and again each time their number doubles (the
+// stored vectors are then recomputed): no vocabulary file, and words fitted to the place revisited.
+#include <Eigen/Geometry>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/options.h"
+#include "mrpt_modules/loop/keyframe_database.h"
+#include "mrpt_modules/loop/loop_verification.h"
+
+namespace rpvio {
+
+struct LoopDetectorOptions {
+  int loop_corners = 500;                      // ORB corners per keyframe
+  double loop_min_age_s = 20;                  // s: a candidate is at least this much older
+  double loop_min_score_ratio = 0.3;           // of the query's score with the previous keyframe
+  int loop_candidates = 3;                     // geometric checks per query, best score first
+  size_t loop_vocabulary_keyframes = 40;       // first training
+  size_t loop_vocabulary_descriptors = 50000;  // at most, evenly sampled, per training
+  LoopCheckOptions check;
+  VocabularyOptions vocabulary;
+
+  template <class Visitor>
+  void fields(Visitor& v) {
+    RPVIO_OPTION(v, loop_corners);
+    RPVIO_OPTION(v, loop_min_age_s);
+    RPVIO_OPTION(v, loop_min_score_ratio);
+    RPVIO_OPTION(v, loop_candidates);
+    RPVIO_OPTION(v, loop_vocabulary_keyframes);
+    RPVIO_OPTION(v, loop_vocabulary_descriptors);
+    check.fields(v);
+  }
+};
+
+/// A revisit found by appearance, and what the geometric check made of it.
+struct LoopEvent {
+  double t = 0;      // the query keyframe
+  double t_old = 0;  // the candidate it was matched with (the best one when all were rejected)
+  double score = 0;  // bowScore of the two
+  LoopCheck check;
+};
+
+class LoopDetector {
+ public:
+  explicit LoopDetector(const LoopDetectorOptions& options, const Eigen::Isometry3d& T_BC)
+      : options_(options), T_BC_(T_BC) {}
+
+  /// Stores a keyframe (body pose in the world) and looks for its revisit; the event when a
+  /// candidate passed the appearance test (accepted or not).
+  std::optional<LoopEvent> add(double t, const Eigen::Isometry3d& body,
+                               KeyframeAppearance appearance);
+  /// Forgets every keyframe (the odometry re-initialized in another world).
+  void clear();
+  size_t keyframes() const { return keyframes_.size(); }
+  int vocabularyWords() const { return vocabulary_.words(); }
+
+ private:
+  struct Stored {
+    double t;
+    Eigen::Isometry3d body;
+    KeyframeAppearance appearance;
+  };
+  void trainVocabulary();
+  std::optional<LoopEvent> query(const BowVector& bow);
+
+  LoopDetectorOptions options_;
+  Eigen::Isometry3d T_BC_;
+  std::vector<Stored> keyframes_;
+  BinaryVocabulary vocabulary_;
+  KeyframeDatabase database_;
+  size_t next_training_ = 0;  // keyframes at the next training; 0: the first
+};
+
+}  // namespace rpvio

@@ -1,0 +1,132 @@
+// The geometric check of a revisit and the loop detector, on the simulator's warehouse flight
+// (a circle: every place is seen again one lap later).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+#include "mrpt_modules/loop/loop_detector.h"
+#include "mrpt_modules/loop/loop_verification.h"
+#include "sim/simulator.h"
+
+namespace rpvio {
+namespace {
+
+sim::SimConfig staticWarehouse() {
+  sim::SimConfig c;
+  c.scene.characters = 0;
+  return c;
+}
+
+double yawOf(const Eigen::Isometry3d& T) { return std::atan2(T.linear()(1, 0), T.linear()(0, 0)); }
+
+/// The time after `t` + 20 s when the body is nearest to where it was at `t`, heading alike.
+double revisitOf(const sim::Simulator& sim, double t) {
+  const Eigen::Isometry3d then = sim.bodyPose(t);
+  double best = 0, best_cost = 1e9;
+  for (double s = t + 20; s < t + 60; s += 0.05) {
+    const Eigen::Isometry3d now = sim.bodyPose(s);
+    const double yaw = std::remainder(yawOf(now) - yawOf(then), 2 * M_PI);
+    const double cost = (now.translation() - then.translation()).norm() + 5 * std::abs(yaw);
+    if (cost < best_cost) best = s, best_cost = cost;
+  }
+  return best;
+}
+
+/// The keyframe at `t`: its image described at 150 tracked corners (as the front-end picks them)
+/// whose world points (in the true world moved by `drift`) are known.
+KeyframeAppearance keyframeAt(sim::Simulator& sim, double t, const Eigen::Isometry3d& drift) {
+  const CameraIntrinsics camera = sim.calibration().camera;
+  const cv::Mat image = sim.render(t, 0).image;
+  std::vector<cv::Point2f> corners;
+  cv::goodFeaturesToTrack(image, corners, 150, 0.01, 30);
+  std::vector<AppearancePoint> tracked;
+  for (const cv::Point2f& c : corners) {
+    const sim::SceneHit hit = sim.castPixel(t, c.x, c.y);
+    if (hit.label == sim::kMaskNothing) continue;
+    tracked.push_back(
+        {Eigen::Vector2d((c.x - camera.cx) / camera.fx, (c.y - camera.cy) / camera.fy),
+         drift * hit.point});
+  }
+  return describeKeyframe(image, tracked, camera, 500);
+}
+
+Eigen::Isometry3d fourDofDrift() {
+  Eigen::Isometry3d drift = Eigen::Isometry3d::Identity();
+  drift.linear() = Eigen::AngleAxisd(10 * M_PI / 180, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  drift.translation() = Eigen::Vector3d(1.0, -0.5, 0.2);
+  return drift;
+}
+
+TEST(LoopVerification, ARevisitPlacesTheOldCameraInTheDriftedWorld) {
+  sim::Simulator sim(staticWarehouse());
+  const double t_old = 5.0;
+  const double t_query = revisitOf(sim, t_old);
+  ASSERT_LT((sim.bodyPose(t_query).translation() - sim.bodyPose(t_old).translation()).norm(), 1.0);
+  const Eigen::Isometry3d drift = fourDofDrift();
+  const KeyframeAppearance old = keyframeAt(sim, t_old, Eigen::Isometry3d::Identity());
+  const KeyframeAppearance query = keyframeAt(sim, t_query, drift);
+  const Eigen::Isometry3d T_BC = sim.calibration().T_BC;
+  const LoopCheck check = verifyLoop(query, old, sim.bodyPose(t_old), T_BC, {});
+  ASSERT_TRUE(check.accepted) << check.why;
+  EXPECT_GE(check.inliers, 25);
+  const Eigen::Isometry3d expected = drift * sim.bodyPose(t_old);
+  EXPECT_LT((check.old_body.translation() - expected.translation()).norm(), 0.05);
+  EXPECT_LT(Eigen::AngleAxisd(check.old_body.linear().transpose() * expected.linear()).angle(),
+            0.5 * M_PI / 180);
+}
+
+TEST(LoopVerification, ATiltThatDisagreesWithTheOdometryIsRejected) {
+  sim::Simulator sim(staticWarehouse());
+  const double t_old = 5.0;
+  const double t_query = revisitOf(sim, t_old);
+  const KeyframeAppearance old = keyframeAt(sim, t_old, Eigen::Isometry3d::Identity());
+  const KeyframeAppearance query = keyframeAt(sim, t_query, Eigen::Isometry3d::Identity());
+  Eigen::Isometry3d rolled = sim.bodyPose(t_old);
+  rolled.linear() = rolled.linear() * Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitX()).matrix();
+  const LoopCheck check = verifyLoop(query, old, rolled, sim.calibration().T_BC, {});
+  EXPECT_FALSE(check.accepted);
+  EXPECT_NE(check.why.find("tilt"), std::string::npos) << check.why;
+}
+
+TEST(LoopVerification, TwoDifferentPlacesAreRejected) {
+  sim::Simulator sim(staticWarehouse());
+  // Half a lap apart: the other side of the warehouse.
+  const double t_old = 5.0;
+  const double t_query = t_old + (revisitOf(sim, t_old) - t_old) / 2;
+  const KeyframeAppearance old = keyframeAt(sim, t_old, Eigen::Isometry3d::Identity());
+  const KeyframeAppearance query = keyframeAt(sim, t_query, Eigen::Isometry3d::Identity());
+  const LoopCheck check = verifyLoop(query, old, sim.bodyPose(t_old), sim.calibration().T_BC, {});
+  EXPECT_FALSE(check.accepted) << check.inliers << " inliers";
+}
+
+TEST(LoopDetector, FindsTheRevisitsOfALapAndNoFalseOne) {
+  // Keyframes every 0.5 s over 1.3 laps; positions drift by 1 % of the distance flown (a yaw
+  // drift would move them too).
+  sim::Simulator sim(staticWarehouse());
+  const double lap = revisitOf(sim, 5.0) - 5.0;
+  LoopDetectorOptions options;
+  options.loop_vocabulary_keyframes = 20;
+  LoopDetector detector(options, sim.calibration().T_BC);
+  std::vector<LoopEvent> events;
+  for (double t = 0; t < 1.3 * lap; t += 0.5) {
+    Eigen::Isometry3d drift = Eigen::Isometry3d::Identity();
+    drift.translation() = Eigen::Vector3d(0.01 * 2.5 * t, 0, 0);
+    Eigen::Isometry3d body = drift * sim.bodyPose(t);
+    if (auto e = detector.add(t, body, keyframeAt(sim, t, drift))) events.push_back(*e);
+  }
+  int accepted = 0;
+  for (const LoopEvent& e : events) {
+    if (!e.check.accepted) continue;
+    ++accepted;
+    const double apart =
+        (sim.bodyPose(e.t).translation() - sim.bodyPose(e.t_old).translation()).norm();
+    EXPECT_LT(apart, 3.0) << "false loop " << e.t << " -> " << e.t_old;
+    EXPECT_GE(e.t - e.t_old, options.loop_min_age_s);
+  }
+  // The last 0.3 lap revisits the first: most of its keyframes should be recognized.
+  EXPECT_GE(accepted, static_cast<int>(0.3 * lap / 0.5 / 2)) << events.size() << " found";
+}
+
+}  // namespace
+}  // namespace rpvio
