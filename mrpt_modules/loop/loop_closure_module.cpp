@@ -16,7 +16,7 @@ namespace {
 
 constexpr double kMaxImageGapS = 0.005;  // a keyframe's image: the nearest, this close
 
-Eigen::Isometry3d bodyPose(const double pose[7]) {
+Eigen::Isometry3d poseOf(const double pose[7]) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.translation() = Eigen::Vector3d(pose[0], pose[1], pose[2]);
   T.linear() =
@@ -28,9 +28,10 @@ Eigen::Isometry3d bodyPose(const double pose[7]) {
 
 void LoopClosureModule::initialize(const IniFile& config, const std::string& section,
                                    PipelineContext& context) {
-  options_ = loadOptions<LoopDetectorOptions>(config, section);
+  options_ = loadOptions<LoopClosureOptions>(config, section);
   camera_ = context.calibration.camera;
-  detector_ = std::make_unique<LoopDetector>(options_, context.calibration.T_BC);
+  detector_ = std::make_unique<LoopDetector>(options_.detection, context.calibration.T_BC);
+  graph_ = std::make_unique<FourDofPoseGraph>(options_.graph);
   worker_ = std::make_unique<SerialWorker>();
   bus_ = &context.bus;
   context.bus.subscribeSensor(labels::kCamera, [this](const ObservationMessage& m) {
@@ -38,8 +39,26 @@ void LoopClosureModule::initialize(const IniFile& config, const std::string& sec
         locateImage(dynamic_cast<const mrpt::obs::CObservationImage&>(*m.observation), *m.reader);
   });
   context.bus.subscribe<KeyframeLeft>([this](const KeyframeLeft& k) { onKeyframe(k); });
-  context.bus.subscribe<NewWorld>(
-      [this](const NewWorld&) { last_task_ = worker_->submit([this] { detector_->clear(); }); });
+  context.bus.subscribe<StateEstimate>([this](const StateEstimate& s) {
+    // Composed as quaternions: without a correction, exactly the odometry's pose.
+    const Eigen::Quaterniond q_C(correction_.linear());
+    const Eigen::Quaterniond q(s.pose[6], s.pose[3], s.pose[4], s.pose[5]);
+    corrected_.push_back(
+        {s.t, correction_ * Eigen::Vector3d(s.pose[0], s.pose[1], s.pose[2]), q_C * q});
+  });
+  // Another world: the keyframes so far cannot be revisited in it.
+  context.bus.subscribe<NewWorld>([this](const NewWorld&) {
+    while (!results_.empty()) takeResult();
+    worker_
+        ->submit([this] {
+          detector_->clear();
+          graph_->clear();
+          loop_unsolved_ = false;
+          keyframes_since_solve_ = 1 << 20;
+        })
+        .get();
+    correction_ = Eigen::Isometry3d::Identity();
+  });
   setOptionsText("[" + section + "]\n" + describeOptions(options_));
 }
 
@@ -52,29 +71,59 @@ void LoopClosureModule::onKeyframe(const KeyframeLeft& left) {
   std::vector<AppearancePoint> tracked;
   for (const ArchivedObservation& o : left.observations)
     tracked.push_back({o.observation.normalized, o.world});
-  const Eigen::Isometry3d body = bodyPose(left.keyframe.pose);
-  last_task_ = worker_->submit([this, t, image, tracked = std::move(tracked), body] {
-    if (error_) return;
-    try {
-      KeyframeAppearance appearance =
-          describeKeyframe(decodeGrayImage(image), tracked, camera_, options_.loop_corners);
-      if (auto event = detector_->add(t, body, std::move(appearance))) events_.push_back(*event);
-    } catch (...) {
-      error_ = std::current_exception();
+  const Eigen::Isometry3d body = poseOf(left.keyframe.pose);
+  results_.push_back(worker_->submit([this, t, image, tracked = std::move(tracked), body] {
+    return processKeyframe(t, image, tracked, body);
+  }));
+  while (results_.size() > static_cast<size_t>(std::max(options_.loop_result_lag, 0))) takeResult();
+}
+
+Eigen::Isometry3d LoopClosureModule::processKeyframe(double t, const ImageFileRef& image,
+                                                     const std::vector<AppearancePoint>& tracked,
+                                                     const Eigen::Isometry3d& body) {
+  if (error_) return Eigen::Isometry3d::Identity();
+  try {
+    KeyframeAppearance appearance =
+        describeKeyframe(decodeGrayImage(image), tracked, camera_, options_.detection.loop_corners);
+    const auto event = detector_->add(t, body, std::move(appearance));
+    const size_t k = graph_->addKeyframe(body);
+    if (event) {
+      events_.push_back(*event);
+      if (event->check.accepted) {
+        graph_->addLoop(event->old_index, k, event->check.old_body);
+        loop_unsolved_ = true;
+      }
     }
-  });
+    ++keyframes_since_solve_;
+    if (loop_unsolved_ && keyframes_since_solve_ >= options_.loop_solve_every) {
+      graph_->optimize();
+      loop_unsolved_ = false;
+      keyframes_since_solve_ = 0;
+    }
+    return graph_->correction(k);
+  } catch (...) {
+    error_ = std::current_exception();
+    return Eigen::Isometry3d::Identity();
+  }
+}
+
+void LoopClosureModule::takeResult() {
+  correction_ = results_.front().get();
+  results_.pop_front();
 }
 
 void LoopClosureModule::finish() {
-  if (last_task_.valid()) last_task_.get();  // the worker runs in order: everything is done
+  while (!results_.empty()) takeResult();
   if (error_) std::rethrow_exception(error_);
   LoopClosureSummary summary;
   summary.keyframes = detector_->keyframes();
   summary.events = events_;
-  for (const LoopEvent& e : events_)
-    MRPT_LOG_INFO_STREAM("loop " << timeText(e.t) << " -> " << timeText(e.t_old) << ": "
-                                 << (e.check.accepted ? "accepted" : "rejected, " + e.check.why)
-                                 << " (" << e.check.inliers << " inliers)");
+  summary.corrected = corrected_;
+  size_t accepted = 0;
+  for (const LoopEvent& e : events_) accepted += e.check.accepted;
+  MRPT_LOG_INFO_STREAM("loop closure: " << summary.keyframes << " keyframes, " << events_.size()
+                                        << " revisits found by appearance, " << accepted
+                                        << " accepted");
   bus_->publish(summary);
 }
 

@@ -62,6 +62,7 @@ std::optional<LoopEvent> LoopDetector::query(const BowVector& bow) {
     if (c == 0 || check.accepted) {
       event.t = newest.t;
       event.t_old = old.t;
+      event.old_index = matches[c].keyframe;
       event.score = matches[c].score;
       event.check = check;
     }

@@ -39,9 +39,10 @@ struct LoopDetectorOptions {
 
 /// A revisit found by appearance, and what the geometric check made of it.
 struct LoopEvent {
-  double t = 0;      // the query keyframe
-  double t_old = 0;  // the candidate it was matched with (the best one when all were rejected)
-  double score = 0;  // bowScore of the two
+  double t = 0;          // the query keyframe
+  double t_old = 0;      // the candidate it was matched with (the best one when all were rejected)
+  size_t old_index = 0;  // the candidate's index among the stored keyframes
+  double score = 0;      // bowScore of the two
   LoopCheck check;
 };
 

@@ -36,6 +36,8 @@ void TrajectoryWriterModule::initialize(const IniFile&, const std::string& secti
       [this](const StateEstimate& s) { odometry_.push_back(stampedPose(s)); });
   context.bus.subscribe<MapSummary>(
       [this](const MapSummary& s) { refined_ = toTrajectory(s.refined_trajectory); });
+  context.bus.subscribe<LoopClosureSummary>(
+      [this](const LoopClosureSummary& s) { loop_ = s.corrected; });
   setOptionsText("[" + section + "]\n");
 }
 
@@ -44,6 +46,7 @@ void TrajectoryWriterModule::finish() {
   const std::filesystem::path dir(output_dir_);
   writeTum((dir / "trajectory.tum").string(), odometry_);
   if (!refined_.empty()) writeTum((dir / "trajectory_refined.tum").string(), refined_);
+  if (!loop_.empty()) writeTum((dir / "trajectory_loop.tum").string(), loop_);
 }
 
 }  // namespace rpvio
