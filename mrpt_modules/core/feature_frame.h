@@ -15,7 +15,8 @@ struct TrackedFeature {
 };
 
 struct FeatureFrame {
-  double t = 0;  // image timestamp (s), camera clock
+  double t = 0;        // image timestamp (s), camera clock; the estimator moves it to the IMU clock
+  double image_t = 0;  // the image's timestamp as the rawlog has it, never moved
   std::vector<TrackedFeature> features;
 };
 

@@ -22,7 +22,8 @@ namespace rpvio {
 
 struct ArchivedKeyframe {
   uint64_t id = 0;
-  double t = 0;
+  double t = 0;                            // IMU clock
+  double image_t = 0;                      // its image's timestamp (FeatureFrame::image_t)
   double pose[7] = {0, 0, 0, 0, 0, 0, 1};  // body in world [p, q]
   double speed_bias[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
   std::shared_ptr<const ImuPreintegration> to_next;  // null: no IMU factor to the next keyframe

@@ -414,7 +414,7 @@ void PlaneDiscovery::adopt(const FeatureFrame& j, const FeatureFrame& k,
 
 FeatureFrame PlaneDiscovery::label(const FeatureFrame& frame,
                                    const std::optional<Eigen::Quaterniond>& R_previous_current) {
-  if (!options_.enabled) return FeatureFrame{frame.t, {}};
+  if (!options_.enabled) return FeatureFrame{frame.t, frame.image_t, {}};
   history_.push(frame, R_previous_current);
   if (const auto* reference = history_.reference(options_.span_s)) {
     const CheckResult result = check(reference->frame, frame, history_.rotationFrom(*reference));
@@ -437,6 +437,7 @@ FeatureFrame PlaneDiscovery::label(const FeatureFrame& frame,
 FeatureFrame PlaneDiscovery::labelled(const FeatureFrame& frame) const {
   FeatureFrame out;
   out.t = frame.t;
+  out.image_t = frame.image_t;
   for (const TrackedFeature& f : frame.features) {
     TrackedFeature kept = f;
     kept.plane_id = 0;

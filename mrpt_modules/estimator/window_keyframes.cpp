@@ -147,6 +147,7 @@ void SlidingWindowEstimator::archiveKeyframe(const Frame& frame, const Frame* ne
   ArchivedKeyframe& k = left.keyframe;
   k.id = frame.id;
   k.t = frame.features.t;
+  k.image_t = frame.features.image_t;
   std::copy(frame.pose, frame.pose + 7, k.pose);
   std::copy(frame.speed_bias, frame.speed_bias + 9, k.speed_bias);
   if (ground_) k.ground_label = ground_->plane;

@@ -12,7 +12,7 @@ namespace {
 /// The frame's features with (`ground` true) or without the ground's tracks (ground_tracks.h),
 /// which the screening passes as they are: the ground's alignment has already judged them.
 FeatureFrame groundTracks(const FeatureFrame& frame, bool ground) {
-  FeatureFrame part{frame.t, {}};
+  FeatureFrame part{frame.t, frame.image_t, {}};
   for (const TrackedFeature& f : frame.features)
     if ((f.plane_id == kGroundLabel) == ground) part.features.push_back(f);
   return part;

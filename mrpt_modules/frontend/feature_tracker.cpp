@@ -370,7 +370,7 @@ FeatureTracker::Track FeatureTracker::newTrack(int label, cv::Point2f corner,
 
 FeatureFrame FeatureTracker::publish(double t, double dt) {
   FeatureFrame frame;
-  frame.t = t;
+  frame.t = frame.image_t = t;
   std::unordered_map<int, cv::Point2f> previous_normalized;
   for (const Track& p : previous_) previous_normalized[p.id] = p.normalized;
   for (const Track& tr : tracks_) {
@@ -411,7 +411,7 @@ FeatureFrame FeatureTracker::track(double t, const cv::Mat& raw_image, const cv:
     if (ground_)
       ground_.emplace(camera_, GroundTrackOptions{options_.ground_features},
                       GroundAlignmentOptions{});
-    return FeatureFrame{t, {}};
+    return FeatureFrame{t, t, {}};
   }
   if (options_.clahe) {
     cv::Mat equalized;

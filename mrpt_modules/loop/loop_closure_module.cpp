@@ -14,8 +14,6 @@ MRPT_INITIALIZER(register_LoopClosureModule) {
 namespace rpvio {
 namespace {
 
-constexpr double kMaxImageGapS = 0.005;  // a keyframe's image: the nearest, this close
-
 Eigen::Isometry3d poseOf(const double pose[7]) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.translation() = Eigen::Vector3d(pose[0], pose[1], pose[2]);
@@ -64,10 +62,10 @@ void LoopClosureModule::initialize(const IniFile& config, const std::string& sec
 
 void LoopClosureModule::onKeyframe(const KeyframeLeft& left) {
   const double t = left.keyframe.t;
-  auto nearest = images_.lower_bound(t - kMaxImageGapS);
-  if (nearest == images_.end() || nearest->first > t + kMaxImageGapS) return;
-  const ImageFileRef image = nearest->second;
-  images_.erase(images_.begin(), std::next(nearest));  // keyframes leave in time order
+  const auto found = images_.find(left.keyframe.image_t);
+  if (found == images_.end()) return;
+  const ImageFileRef image = found->second;
+  images_.erase(images_.begin(), std::next(found));  // keyframes leave in time order
   std::vector<AppearancePoint> tracked;
   for (const ArchivedObservation& o : left.observations)
     tracked.push_back({o.observation.normalized, o.world});
