@@ -19,4 +19,4 @@ echo "== ... and after the batch refinement at its end: keyframes and plane map"
   --est "$OUT/rpvio-single/trajectory_refined.tum" --label "rpvio-single refined" --align se3 \
   --planes "$OUT/rpvio-single/planes.yaml" --gt-planes "$OUT/C4/groundtruth_planes.yaml" \
   --json "$OUT/accuracy_refined.json"
-echo "== outputs: $OUT/rpvio-single/{trajectory.tum,trajectory_refined.tum,stats.csv,summary.json}, plane map $OUT/rpvio-single/planes.{yaml,ply,bt,3Dscene} + planes_topview.png, plot $OUT/trajectory.png"
+echo "== outputs: $OUT/rpvio-single/{trajectory.tum,trajectory_refined.tum,trajectory_loop.tum,stats.csv,summary.json}, plane map $OUT/rpvio-single/planes.{yaml,ply,bt,3Dscene} + planes_topview.png, plot $OUT/trajectory.png"
