@@ -2,6 +2,7 @@
 
 #include <mrpt/core/initializer.h>
 
+#include "mrpt_modules/factors/parameter_blocks.h"
 #include "rawlog_io/rawlog_labels.h"
 
 IMPLEMENTS_MRPT_OBJECT(LoopClosureModule, rpvio::Module, rpvio)
@@ -12,17 +13,6 @@ MRPT_INITIALIZER(register_LoopClosureModule) {
 }
 
 namespace rpvio {
-namespace {
-
-Eigen::Isometry3d poseOf(const double pose[7]) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.translation() = Eigen::Vector3d(pose[0], pose[1], pose[2]);
-  T.linear() =
-      Eigen::Quaterniond(pose[6], pose[3], pose[4], pose[5]).normalized().toRotationMatrix();
-  return T;
-}
-
-}  // namespace
 
 void LoopClosureModule::initialize(const IniFile& config, const std::string& section,
                                    PipelineContext& context) {
@@ -40,9 +30,7 @@ void LoopClosureModule::initialize(const IniFile& config, const std::string& sec
   context.bus.subscribe<StateEstimate>([this](const StateEstimate& s) {
     // Composed as quaternions: without a correction, exactly the odometry's pose.
     const Eigen::Quaterniond q_C(correction_.linear());
-    const Eigen::Quaterniond q(s.pose[6], s.pose[3], s.pose[4], s.pose[5]);
-    corrected_.push_back(
-        {s.t, correction_ * Eigen::Vector3d(s.pose[0], s.pose[1], s.pose[2]), q_C * q});
+    corrected_.push_back({s.t, correction_ * posePosition(s.pose), q_C * poseRotation(s.pose)});
   });
   // Another world: the keyframes so far cannot be revisited in it.
   context.bus.subscribe<NewWorld>([this](const NewWorld&) {
@@ -69,7 +57,7 @@ void LoopClosureModule::onKeyframe(const KeyframeLeft& left) {
   std::vector<AppearancePoint> tracked;
   for (const ArchivedObservation& o : left.observations)
     tracked.push_back({o.observation.normalized, o.world});
-  const Eigen::Isometry3d body = poseOf(left.keyframe.pose);
+  const Eigen::Isometry3d body = poseIsometry(left.keyframe.pose);
   results_.push_back(worker_->submit([this, t, image, tracked = std::move(tracked), body] {
     return processKeyframe(t, image, tracked, body);
   }));
