@@ -16,6 +16,7 @@
 #include "mrpt_modules/core/feature_frame.h"
 #include "mrpt_modules/core/pipeline.h"
 #include "mrpt_modules/estimator/estimator_types.h"
+#include "mrpt_modules/loop/loop_closure_module.h"
 #include "rawlog_io/calibration.h"
 #include "rawlog_io/rawlog_labels.h"
 
@@ -26,7 +27,7 @@ namespace {
 
 const char* kUsage =
     "usage: rpvio-slam --config config/<mode>.ini --calib DIR/calib.ini --rawlog DIR/seq.rawlog\n"
-    "                  --out OUTDIR [--quiet] [--threads N]\n"
+    "                  --out OUTDIR [--quiet] [--threads N] [--map DIR] [--save-map DIR]\n"
     "  Plays the rawlog through the modules of the config. OUTDIR gets config_used.ini and what\n"
     "  the config's output modules write (those of the shipped configs: docs/data-formats.md):\n"
     "    trajectory.tum  body in world, every frame from the initialization window's first\n"
@@ -47,6 +48,13 @@ const char* kUsage =
     "                    status (the estimator's last status, e.g. why it never initialized)\n"
     "    planes.{yaml,ply,bt,3Dscene}, planes_topview.png  the plane map\n"
     "    config_used.ini the configuration in effect: every module's options, all keys\n"
+    "  --save-map DIR  saves the loop closure's keyframes (poses in the map's frame, appearance)\n"
+    "               in DIR/keyframes.rpvmap at the end of the run\n"
+    "  --map DIR    starts from a map --save-map wrote: the run relocalizes in it at its first\n"
+    "               revisit of a map keyframe (summary.json relocalized_t) and "
+    "trajectory_loop.tum\n"
+    "               is in the map's frame from then on; a map saved with another calibration is\n"
+    "               refused. Both need LoopClosureModule in the config's [Pipeline] modules.\n"
     "  --threads N  OpenCV threads (default 1: the whole pipeline on one core, the setting of the\n"
     "               published timings; the benchmark runs sequences in parallel instead)\n";
 
@@ -117,10 +125,15 @@ class ProgressLine {
 SlamAppResult runSlam(const SlamAppOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   Pipeline pipeline(o.config, loadCalibration(o.calib),
-                    o.quiet ? mrpt::system::LVL_WARN : mrpt::system::LVL_INFO, o.out);
+                    o.quiet ? mrpt::system::LVL_WARN : mrpt::system::LVL_INFO, o.out,
+                    {o.map, o.save_map});
+  if ((!o.map.empty() || !o.save_map.empty()) && !pipeline.find<LoopClosureModule>())
+    throw InputError(o.config, "",
+                     "--map and --save-map need LoopClosureModule in [Pipeline] modules");
   const auto missing = pipeline.missingSensors(o.rawlog);
   if (!missing.empty()) throw InputError(o.rawlog, "", missingSensorReason(missing.front()));
   requireOutputFolder(o.out);
+  if (!o.save_map.empty()) requireOutputFolder(o.save_map);
   writeFileAtomically((fs::path(o.out) / "config_used.ini").string(),
                       [&](std::ostream& s) { s << pipeline.effectiveConfig(); });
   SlamAppResult result;
@@ -162,13 +175,16 @@ SlamAppResult runSlam(const SlamAppOptions& o) {
 
 int slamMain(int argc, char** argv) {
   return runApp("rpvio-slam", kUsage, [&] {
-    const CommandLine cli(argc, argv, {"config", "calib", "rawlog", "out", "threads"}, {"quiet"});
+    const CommandLine cli(
+        argc, argv, {"config", "calib", "rawlog", "out", "threads", "map", "save-map"}, {"quiet"});
     cv::setNumThreads(cli.count("threads", 1));
     SlamAppOptions o;
     o.config = cli.value("config");
     o.calib = cli.value("calib");
     o.rawlog = cli.value("rawlog");
     o.out = cli.value("out");
+    o.map = cli.valueOr("map", "");
+    o.save_map = cli.valueOr("save-map", "");
     o.quiet = cli.has("quiet");
     o.progress = isatty(STDERR_FILENO);
     const SlamAppResult r = runSlam(o);

@@ -11,6 +11,8 @@ namespace rpvio::apps {
 
 struct SlamAppOptions {
   std::string config, calib, rawlog, out;
+  std::string map;        // a folder --save-map wrote: relocalize in it ("" = none)
+  std::string save_map;   // a folder to save the run's map in ("" = not saved)
   bool quiet = false;     // modules log warnings only, no progress line
   bool progress = false;  // a progress line on stderr (a terminal)
 };

@@ -14,10 +14,17 @@
 namespace rpvio {
 
 /// What every module may use when it is set up.
+/// A saved map to start from and where to save the run's (rpvio-slam --map, --save-map).
+struct MapFolders {
+  std::string load;  // "" = none
+  std::string save;  // "" = not saved
+};
+
 struct PipelineContext {
   Calibration calibration;
   Bus bus;
   std::string output_dir;  // where output modules write; "" = nowhere (they write nothing)
+  MapFolders maps;
 };
 
 class Module : public mrpt::rtti::CObject, public mrpt::system::COutputLogger {

@@ -10,9 +10,11 @@
 namespace rpvio {
 
 Pipeline::Pipeline(const std::string& config_path, const Calibration& calibration,
-                   mrpt::system::VerbosityLevel verbosity, const std::string& output_dir) {
+                   mrpt::system::VerbosityLevel verbosity, const std::string& output_dir,
+                   const MapFolders& maps) {
   context_.calibration = calibration;
   context_.output_dir = output_dir;
+  context_.maps = maps;
   const IniFile ini(config_path);
   std::string list = ini.text("Pipeline", "modules");
   for (char& c : list)

@@ -15,10 +15,10 @@ class Pipeline {
  public:
   /// Throws InputError naming the config file (and line) for an unknown module, a bad option or
   /// a key no module reads. Modules log at `verbosity` and above; output modules write into
-  /// `output_dir` (none when "").
+  /// `output_dir` (none when ""); the loop closure loads and saves `maps`.
   Pipeline(const std::string& config_path, const Calibration& calibration,
            mrpt::system::VerbosityLevel verbosity = mrpt::system::LVL_INFO,
-           const std::string& output_dir = "");
+           const std::string& output_dir = "", const MapFolders& maps = {});
 
   /// Streams the rawlog through the bus; `on_entry(entries_read)` after each observation; then
   /// finish(). Throws InputError on bad rawlog content (naming file and entry) without finishing:

@@ -3,6 +3,7 @@
 #include <ceres/ceres.h>
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace rpvio {
 
@@ -20,22 +21,58 @@ Eigen::Matrix3d fromYawPitchRoll(double yaw, double pitch, double roll) {
       .toRotationMatrix();
 }
 
+namespace {
+
+/// The 4-DoF part of T: its yaw about the vertical and its translation.
+Eigen::Isometry3d yawAndTranslation(const Eigen::Isometry3d& T) {
+  Eigen::Isometry3d C = Eigen::Isometry3d::Identity();
+  C.linear() =
+      Eigen::AngleAxisd(yawPitchRoll(T.linear()).x(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  C.translation() = T.translation();
+  return C;
+}
+
+}  // namespace
+
+size_t FourDofPoseGraph::addMapKeyframe(const Eigen::Isometry3d& body) {
+  if (nodes_.size() != map_nodes_) throw std::logic_error("FourDofPoseGraph: map keyframes first");
+  const Eigen::Vector3d ypr = yawPitchRoll(body.linear());
+  nodes_.push_back({body, ypr.y(), ypr.z(), {ypr.x()}, {}});
+  Eigen::Map<Eigen::Vector3d>(nodes_.back().p.data()) = body.translation();
+  return map_nodes_++;
+}
+
 size_t FourDofPoseGraph::addKeyframe(const Eigen::Isometry3d& odometry) {
   const Eigen::Vector3d ypr = yawPitchRoll(odometry.linear());
   Node node{odometry, ypr.y(), ypr.z(), {ypr.x()}, {}};
   // A new keyframe starts where the last correction puts it.
-  const Eigen::Isometry3d start = nodes_.empty() ? odometry : correction(size() - 1) * odometry;
+  const Eigen::Isometry3d start =
+      nodes_.size() == map_nodes_ ? odometry : correction(size() - 1) * odometry;
   node.yaw[0] = yawPitchRoll(start.linear()).x();
   Eigen::Map<Eigen::Vector3d>(node.p.data()) = start.translation();
   nodes_.push_back(node);
   const size_t j = nodes_.size() - 1;
-  for (size_t back = 1; back <= static_cast<size_t>(options_.loop_sequential_edges) && back <= j;
+  for (size_t back = 1;
+       back <= static_cast<size_t>(options_.loop_sequential_edges) && back <= j - map_nodes_;
        ++back)
     addEdge(j - back, j, nodes_[j - back].odometry, odometry, false);
   return j;
 }
 
 void FourDofPoseGraph::addLoop(size_t old, size_t query, const Eigen::Isometry3d& old_body) {
+  if (old < map_nodes_ && !relocalized_) {
+    // The run's world onto the map's: the old keyframe's pose in the map times its pose in the
+    // run's world (the PnP's) inverted; yaw and translation only, both worlds are gravity-aligned.
+    const Eigen::Isometry3d M = yawAndTranslation(corrected(old) * old_body.inverse());
+    const double dyaw = yawPitchRoll(M.linear()).x();
+    for (size_t k = map_nodes_; k < nodes_.size(); ++k) {
+      Node& n = nodes_[k];
+      const Eigen::Vector3d p = M * Eigen::Vector3d(n.p[0], n.p[1], n.p[2]);
+      Eigen::Map<Eigen::Vector3d>(n.p.data()) = p;
+      n.yaw[0] += dyaw;
+    }
+    relocalized_ = true;
+  }
   addEdge(old, query, old_body, nodes_[query].odometry, true);
   ++loops_;
 }
@@ -61,8 +98,13 @@ void FourDofPoseGraph::optimize() {
         cost, e.loop ? new ceres::CauchyLoss(options_.loop_edge_cauchy) : nullptr, nodes_[e.i].yaw,
         nodes_[e.i].p.data(), nodes_[e.j].yaw, nodes_[e.j].p.data());
   }
-  problem.SetParameterBlockConstant(nodes_[0].yaw);
-  problem.SetParameterBlockConstant(nodes_[0].p.data());
+  // The gauge: the map's keyframes, or the run's first when it has not revisited the map.
+  const size_t held = relocalized_ ? map_nodes_ : map_nodes_ + 1;
+  for (size_t k = 0; k < std::min(held, nodes_.size()); ++k)
+    if (problem.HasParameterBlock(nodes_[k].yaw)) {
+      problem.SetParameterBlockConstant(nodes_[k].yaw);
+      problem.SetParameterBlockConstant(nodes_[k].p.data());
+    }
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
   solver.max_num_iterations = 20;
@@ -73,6 +115,7 @@ void FourDofPoseGraph::optimize() {
 
 Eigen::Isometry3d FourDofPoseGraph::corrected(size_t k) const {
   const Node& n = nodes_[k];
+  if (k < map_nodes_) return n.odometry;  // held: exactly as loaded
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.linear() = fromYawPitchRoll(n.yaw[0], n.pitch, n.roll);
   T.translation() = Eigen::Vector3d(n.p[0], n.p[1], n.p[2]);
@@ -88,10 +131,11 @@ Eigen::Isometry3d FourDofPoseGraph::correction(size_t k) const {
   return C;
 }
 
-void FourDofPoseGraph::clear() {
-  nodes_.clear();
-  edges_.clear();
+void FourDofPoseGraph::clearSession() {
+  nodes_.resize(map_nodes_);
+  edges_.clear();  // the map's keyframes have none
   loops_ = 0;
+  relocalized_ = false;
 }
 
 }  // namespace rpvio

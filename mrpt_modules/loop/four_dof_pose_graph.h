@@ -4,6 +4,9 @@
 // edge (i, j) measures the position of j in i's frame and the yaw from i to j:
 //   r_p = R(ψ_i, θ_i, φ_i)ᵀ (p_j − p_i) − p̂_ij,   r_ψ = wrap(ψ_j − ψ_i − ψ̂_ij).
 // Sequential edges come from the odometry, loop edges from the revisits' PnP (with a Cauchy loss).
+// A loaded map's keyframes come first and are held where the map has them; the run's keyframes
+// are moved into the map's frame by their first revisit of it (relocalization), then solved with
+// the map's keyframes as the anchor.
 #include <Eigen/Geometry>
 #include <array>
 #include <vector>
@@ -46,13 +49,20 @@ class FourDofPoseGraph {
  public:
   explicit FourDofPoseGraph(const PoseGraphOptions& options) : options_(options) {}
 
+  /// A keyframe of a loaded map (before any addKeyframe): held at `body`, in the map's frame.
+  size_t addMapKeyframe(const Eigen::Isometry3d& body);
   /// Adds the next keyframe (body in world, as the odometry has it); its index is returned. It is
-  /// linked to the keyframes before it by the odometry's relative poses.
+  /// linked to the run's keyframes before it by the odometry's relative poses.
   size_t addKeyframe(const Eigen::Isometry3d& odometry);
-  /// A revisit: keyframe `old`'s body as the PnP places it in `query`'s world.
+  /// A revisit: keyframe `old`'s body as the PnP places it in `query`'s world. The first revisit
+  /// of a map keyframe moves the run's keyframes by the yaw and translation it implies.
   void addLoop(size_t old, size_t query, const Eigen::Isometry3d& old_body);
-  /// Solves the graph, the first keyframe held.
+  /// Solves the graph: the map's keyframes held, or without a revisit of them the run's first.
   void optimize();
+  /// The run's keyframes are in the map's frame (a map keyframe was revisited).
+  bool relocalized() const { return relocalized_; }
+  /// Forgets the run's keyframes, not the map's.
+  void clearSession();
 
   size_t size() const { return nodes_.size(); }
   size_t loops() const { return loops_; }
@@ -60,7 +70,6 @@ class FourDofPoseGraph {
   Eigen::Isometry3d corrected(size_t k) const;
   /// corrected(k) · odometry(k)⁻¹: what moves the odometry's world onto the graph's at k.
   Eigen::Isometry3d correction(size_t k) const;
-  void clear();
 
  private:
   struct Node {
@@ -82,6 +91,8 @@ class FourDofPoseGraph {
   std::vector<Node> nodes_;
   std::vector<Edge> edges_;
   size_t loops_ = 0;
+  size_t map_nodes_ = 0;  // the first ones
+  bool relocalized_ = false;
 };
 
 template <typename T>

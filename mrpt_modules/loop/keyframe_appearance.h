@@ -4,6 +4,7 @@
 // assumes) at corners detected over the whole image and at the keyframe's tracked features; a
 // tracked feature the window triangulated carries its world point.
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 #include <optional>
 #include <vector>
@@ -20,6 +21,13 @@ struct AppearancePoint {
 struct KeyframeAppearance {
   std::vector<AppearancePoint> points;
   cv::Mat descriptors;  // row i (32 bytes) describes points[i]
+};
+
+/// A keyframe as the loop closure keeps it: its time, its body pose in the world, its appearance.
+struct StoredKeyframe {
+  double t = 0;
+  Eigen::Isometry3d body = Eigen::Isometry3d::Identity();
+  KeyframeAppearance appearance;
 };
 
 /// Describes `image` at up to `corners` FAST corners (Harris-ranked, one scale) and at every

@@ -2,7 +2,9 @@
 
 #include <mrpt/core/initializer.h>
 
+#include "common/input_error.h"
 #include "mrpt_modules/factors/parameter_blocks.h"
+#include "mrpt_modules/loop/keyframe_map_file.h"
 #include "rawlog_io/rawlog_labels.h"
 
 IMPLEMENTS_MRPT_OBJECT(LoopClosureModule, rpvio::Module, rpvio)
@@ -17,9 +19,11 @@ namespace rpvio {
 void LoopClosureModule::initialize(const IniFile& config, const std::string& section,
                                    PipelineContext& context) {
   options_ = loadOptions<LoopClosureOptions>(config, section);
-  camera_ = context.calibration.camera;
+  calibration_ = context.calibration;
+  maps_ = context.maps;
   detector_ = std::make_unique<LoopDetector>(options_.detection, context.calibration.T_BC);
   graph_ = std::make_unique<FourDofPoseGraph>(options_.graph);
+  if (!maps_.load.empty()) loadMap(maps_.load, context.calibration);
   worker_ = std::make_unique<SerialWorker>();
   bus_ = &context.bus;
   context.bus.subscribeSensor(labels::kCamera, [this](const ObservationMessage& m) {
@@ -29,21 +33,24 @@ void LoopClosureModule::initialize(const IniFile& config, const std::string& sec
   context.bus.subscribe<KeyframeLeft>([this](const KeyframeLeft& k) { onKeyframe(k); });
   context.bus.subscribe<StateEstimate>([this](const StateEstimate& s) {
     // Composed as quaternions: without a correction, exactly the odometry's pose.
-    const Eigen::Quaterniond q_C(correction_.linear());
-    corrected_.push_back({s.t, correction_ * posePosition(s.pose), q_C * poseRotation(s.pose)});
+    const Eigen::Isometry3d& C = correction_.T;
+    const Eigen::Quaterniond q_C(C.linear());
+    corrected_.push_back({s.t, C * posePosition(s.pose), q_C * poseRotation(s.pose)});
+    if (correction_.in_map && !relocalized_t_) relocalized_t_ = s.t;
   });
   // Another world: the keyframes so far cannot be revisited in it.
   context.bus.subscribe<NewWorld>([this](const NewWorld&) {
     while (!results_.empty()) takeResult();
     worker_
         ->submit([this] {
-          detector_->clear();
-          graph_->clear();
+          detector_->clearSession();
+          graph_->clearSession();
           loop_unsolved_ = false;
           keyframes_since_solve_ = 1 << 20;
+          map_loops_ = 0;
         })
         .get();
-    correction_ = Eigen::Isometry3d::Identity();
+    correction_ = {};
   });
   setOptionsText("[" + section + "]\n" + describeOptions(options_));
 }
@@ -64,13 +71,13 @@ void LoopClosureModule::onKeyframe(const KeyframeLeft& left) {
   while (results_.size() > static_cast<size_t>(std::max(options_.loop_result_lag, 0))) takeResult();
 }
 
-Eigen::Isometry3d LoopClosureModule::processKeyframe(double t, const ImageFileRef& image,
-                                                     const std::vector<AppearancePoint>& tracked,
-                                                     const Eigen::Isometry3d& body) {
-  if (error_) return Eigen::Isometry3d::Identity();
+LoopClosureModule::Correction LoopClosureModule::processKeyframe(
+    double t, const ImageFileRef& image, const std::vector<AppearancePoint>& tracked,
+    const Eigen::Isometry3d& body) {
+  if (error_) return {};
   try {
-    KeyframeAppearance appearance =
-        describeKeyframe(decodeGrayImage(image), tracked, camera_, options_.detection.loop_corners);
+    KeyframeAppearance appearance = describeKeyframe(
+        decodeGrayImage(image), tracked, calibration_.camera, options_.detection.loop_corners);
     const auto event = detector_->add(t, body, std::move(appearance));
     const size_t k = graph_->addKeyframe(body);
     if (event) {
@@ -78,6 +85,9 @@ Eigen::Isometry3d LoopClosureModule::processKeyframe(double t, const ImageFileRe
       if (event->check.accepted) {
         graph_->addLoop(event->old_index, k, event->check.old_body);
         loop_unsolved_ = true;
+        // Relocalized by one revisit, the run is moved by each of the next ones at once.
+        if (event->old_from_map && ++map_loops_ <= options_.loop_map_solves)
+          keyframes_since_solve_ = 1 << 20;
       }
     }
     ++keyframes_since_solve_;
@@ -86,10 +96,10 @@ Eigen::Isometry3d LoopClosureModule::processKeyframe(double t, const ImageFileRe
       loop_unsolved_ = false;
       keyframes_since_solve_ = 0;
     }
-    return graph_->correction(k);
+    return {graph_->correction(k), graph_->relocalized()};
   } catch (...) {
     error_ = std::current_exception();
-    return Eigen::Isometry3d::Identity();
+    return {};
   }
 }
 
@@ -103,14 +113,46 @@ void LoopClosureModule::finish() {
   if (error_) std::rethrow_exception(error_);
   LoopClosureSummary summary;
   summary.keyframes = detector_->keyframes();
+  summary.map_keyframes = detector_->mapKeyframes();
   summary.events = events_;
   summary.corrected = corrected_;
   size_t accepted = 0;
+  summary.relocalized_t = relocalized_t_;
   for (const LoopEvent& e : events_) accepted += e.check.accepted;
   MRPT_LOG_INFO_STREAM("loop closure: " << summary.keyframes << " keyframes, " << events_.size()
                                         << " revisits found by appearance, " << accepted
                                         << " accepted");
+  if (!maps_.save.empty()) saveMap(maps_.save);
   bus_->publish(summary);
+}
+
+void LoopClosureModule::loadMap(const std::string& dir, const Calibration& calibration) {
+  const std::string path = keyframeMapPath(dir);
+  KeyframeMap map = readKeyframeMap(path);
+  const std::string mismatch = calibrationMismatch(map, calibration);
+  if (!mismatch.empty()) throw InputError(path, "", "saved with another calibration: " + mismatch);
+  for (const StoredKeyframe& k : map.keyframes) graph_->addMapKeyframe(k.body);
+  MRPT_LOG_INFO_STREAM("map " << path << ": " << map.keyframes.size() << " keyframes");
+  detector_->addMapKeyframes(std::move(map.keyframes));
+}
+
+void LoopClosureModule::saveMap(const std::string& dir) const {
+  KeyframeMap map{calibration_.camera, calibration_.T_BC, {}};
+  const auto& stored = detector_->stored();
+  // The run's keyframes join a loaded map only in its frame.
+  const bool with_run = detector_->mapKeyframes() == 0 || graph_->relocalized();
+  if (!with_run)
+    MRPT_LOG_WARN_STREAM("the run never revisited the map of " << maps_.load
+                                                               << ": its keyframes are not saved");
+  const size_t count = with_run ? stored.size() : detector_->mapKeyframes();
+  for (size_t k = 0; k < count; ++k) {
+    StoredKeyframe saved{stored[k].t, graph_->corrected(k), {{}, stored[k].appearance.descriptors}};
+    for (const AppearancePoint& p : stored[k].appearance.points)
+      saved.appearance.points.push_back({p.normalized, std::nullopt});
+    map.keyframes.push_back(std::move(saved));
+  }
+  writeKeyframeMap(keyframeMapPath(dir), map);
+  MRPT_LOG_INFO_STREAM("map saved: " << keyframeMapPath(dir) << ", " << count << " keyframes");
 }
 
 }  // namespace rpvio

@@ -8,11 +8,16 @@
 // it leaves (waiting for it then if the thread is behind). At the end of the run it publishes
 // what it found and the corrected trajectory (LoopClosureSummary). Listed after the estimator,
 // before the outputs. Options: section [LoopClosureModule] (LoopClosureOptions).
+// With a saved map (PipelineContext::maps.load, keyframe_map_file.h) its keyframes are candidates
+// from the first keyframe on; the first accepted revisit of one relocalizes the run (its poses are
+// published in the map's frame from then on). With maps.save the map's and the run's keyframes
+// are saved at the end, in the map's frame (the run's only when it relocalized in a loaded map).
 #include <deque>
 #include <exception>
 #include <future>
 #include <map>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "mrpt_modules/core/module.h"
@@ -28,7 +33,8 @@ namespace rpvio {
 struct LoopClosureOptions {
   LoopDetectorOptions detection;
   PoseGraphOptions graph;
-  int loop_solve_every = 10;  // keyframes at least between two solves of the graph
+  int loop_solve_every = 10;  // keyframes at least between two solves of the graph ...
+  int loop_map_solves = 10;   // ... except at the first revisits of a loaded map's keyframes
   int loop_result_lag = 2;    // keyframes (above)
 
   template <class Visitor>
@@ -36,15 +42,18 @@ struct LoopClosureOptions {
     detection.fields(v);
     graph.fields(v);
     RPVIO_OPTION(v, loop_solve_every);
+    RPVIO_OPTION(v, loop_map_solves);
     RPVIO_OPTION(v, loop_result_lag);
   }
 };
 
 /// Published by the loop closure module at the end of the run.
 struct LoopClosureSummary {
-  size_t keyframes = 0;           // described and stored
-  std::vector<LoopEvent> events;  // in the order of the query keyframes
-  Trajectory corrected;           // every published pose, corrected as it was published
+  size_t keyframes = 0;                 // described and stored
+  size_t map_keyframes = 0;             // of them, loaded from a saved map
+  std::optional<double> relocalized_t;  // the first pose published in the loaded map's frame
+  std::vector<LoopEvent> events;        // in the order of the query keyframes
+  Trajectory corrected;                 // every published pose, corrected as it was published
 };
 
 class LoopClosureModule : public Module {
@@ -57,25 +66,35 @@ class LoopClosureModule : public Module {
 
  private:
   void onKeyframe(const KeyframeLeft& left);
+  /// The graph's correction at a keyframe; `in_map`: it moves the run into the loaded map's frame.
+  struct Correction {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    bool in_map = false;
+  };
   /// On the worker: one keyframe through detection and the graph; the graph's correction at it.
-  Eigen::Isometry3d processKeyframe(double t, const ImageFileRef& image,
-                                    const std::vector<AppearancePoint>& tracked,
-                                    const Eigen::Isometry3d& body);
+  Correction processKeyframe(double t, const ImageFileRef& image,
+                             const std::vector<AppearancePoint>& tracked,
+                             const Eigen::Isometry3d& body);
   void takeResult();
+  void loadMap(const std::string& dir, const Calibration& calibration);
+  void saveMap(const std::string& dir) const;
 
   const Bus* bus_ = nullptr;
-  CameraIntrinsics camera_;
+  Calibration calibration_;
+  MapFolders maps_;
   LoopClosureOptions options_;
   std::map<double, ImageFileRef> images_;  // by image time, until their keyframe has left
-  Eigen::Isometry3d correction_ = Eigen::Isometry3d::Identity();  // applied to published poses
+  Correction correction_;                  // applied to published poses
+  std::optional<double> relocalized_t_;
   Trajectory corrected_;
-  std::deque<std::future<Eigen::Isometry3d>> results_;
+  std::deque<std::future<Correction>> results_;
   // Used on worker_ only:
   std::unique_ptr<LoopDetector> detector_;
   std::unique_ptr<FourDofPoseGraph> graph_;
   std::vector<LoopEvent> events_;
   int keyframes_since_solve_ = 1 << 20;  // the first loop is solved at once
   bool loop_unsolved_ = false;
+  int map_loops_ = 0;                     // accepted revisits of the map's keyframes
   std::exception_ptr error_;              // the first a task threw
   std::unique_ptr<SerialWorker> worker_;  // last: joined first
 };

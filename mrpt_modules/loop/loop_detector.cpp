@@ -1,6 +1,7 @@
 #include "mrpt_modules/loop/loop_detector.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace rpvio {
 
@@ -22,13 +23,13 @@ std::optional<LoopEvent> LoopDetector::add(double t, const Eigen::Isometry3d& bo
 
 void LoopDetector::trainVocabulary() {
   size_t total = 0;
-  for (const Stored& k : keyframes_) total += k.appearance.descriptors.rows;
+  for (const StoredKeyframe& k : keyframes_) total += k.appearance.descriptors.rows;
   const size_t stride =
       std::max<size_t>(1, (total + options_.loop_vocabulary_descriptors - 1) /
                               std::max<size_t>(options_.loop_vocabulary_descriptors, 1));
   std::vector<cv::Mat> images;
   size_t row = 0;
-  for (const Stored& k : keyframes_) {
+  for (const StoredKeyframe& k : keyframes_) {
     cv::Mat sampled;
     for (int r = 0; r < k.appearance.descriptors.rows; ++r, ++row)
       if (row % stride == 0) sampled.push_back(k.appearance.descriptors.row(r));
@@ -36,33 +37,37 @@ void LoopDetector::trainVocabulary() {
   }
   vocabulary_ = BinaryVocabulary::train(images, options_.vocabulary);
   database_.clear();
-  for (const Stored& k : keyframes_) database_.add(vocabulary_.transform(k.appearance.descriptors));
+  for (const StoredKeyframe& k : keyframes_)
+    database_.add(vocabulary_.transform(k.appearance.descriptors));
 }
 
 std::optional<LoopEvent> LoopDetector::query(const BowVector& bow) {
-  const Stored& newest = keyframes_.back();
+  const StoredKeyframe& newest = keyframes_.back();
   const size_t index = keyframes_.size() - 1;  // the database holds the keyframes before it
-  if (index == 0) return std::nullopt;
-  // Candidates: old enough, and scoring at least a share of what the previous keyframe scores
-  // (DBoW2's normalization: a score's scale depends on the place and the vocabulary).
+  // Candidates: the map's keyframes and the run's old enough, scoring at least a share of what the
+  // previous keyframe of the run scores (DBoW2's normalization: a score's scale depends on the
+  // place and the vocabulary; the run's first keyframe has no reference, the check decides).
+  const auto session = keyframes_.begin() + static_cast<std::ptrdiff_t>(map_keyframes_);
   const auto old_enough =
-      std::upper_bound(keyframes_.begin(), keyframes_.end() - 1, newest.t - options_.loop_min_age_s,
-                       [](double t, const Stored& k) { return t < k.t; });
+      std::upper_bound(session, keyframes_.end() - 1, newest.t - options_.loop_min_age_s,
+                       [](double t, const StoredKeyframe& k) { return t < k.t; });
   const size_t before = static_cast<size_t>(old_enough - keyframes_.begin());
   if (before == 0) return std::nullopt;
-  const double reference = bowScore(bow, database_.vector(index - 1));
+  const double reference =
+      index > map_keyframes_ ? bowScore(bow, database_.vector(index - 1)) : 0.0;
   const auto matches = database_.query(bow, before, options_.loop_min_score_ratio * reference);
   if (matches.empty()) return std::nullopt;
   LoopEvent event;
   for (int c = 0; c < std::min<int>(options_.loop_candidates, static_cast<int>(matches.size()));
        ++c) {
-    const Stored& old = keyframes_[matches[c].keyframe];
+    const StoredKeyframe& old = keyframes_[matches[c].keyframe];
     const LoopCheck check =
         verifyLoop(newest.appearance, old.appearance, old.body, T_BC_, options_.check);
     if (c == 0 || check.accepted) {
       event.t = newest.t;
       event.t_old = old.t;
       event.old_index = matches[c].keyframe;
+      event.old_from_map = matches[c].keyframe < map_keyframes_;
       event.score = matches[c].score;
       event.check = check;
     }
@@ -71,11 +76,21 @@ std::optional<LoopEvent> LoopDetector::query(const BowVector& bow) {
   return event;
 }
 
-void LoopDetector::clear() {
-  keyframes_.clear();
+void LoopDetector::addMapKeyframes(std::vector<StoredKeyframe> keyframes) {
+  if (!keyframes_.empty()) throw std::logic_error("LoopDetector: map keyframes come first");
+  keyframes_ = std::move(keyframes);
+  map_keyframes_ = keyframes_.size();
+  clearSession();
+}
+
+void LoopDetector::clearSession() {
+  keyframes_.resize(map_keyframes_);
   database_.clear();
   vocabulary_ = BinaryVocabulary();
   next_training_ = 0;
+  if (map_keyframes_ == 0) return;
+  trainVocabulary();
+  next_training_ = 2 * map_keyframes_;
 }
 
 }  // namespace rpvio

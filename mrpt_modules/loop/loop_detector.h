@@ -4,6 +4,8 @@
 // of the best candidates. The vocabulary is trained on the run's own keyframes, when
 // `loop_vocabulary_keyframes` of them are stored and again each time their number doubles (the
 // stored vectors are then recomputed): no vocabulary file, and words fitted to the place revisited.
+// Keyframes of a loaded map (keyframe_map_file.h) come first: they are candidates whatever their
+// time, and the vocabulary is trained on them at once.
 #include <Eigen/Geometry>
 #include <optional>
 #include <string>
@@ -42,7 +44,8 @@ struct LoopEvent {
   double t = 0;          // the query keyframe
   double t_old = 0;      // the candidate it was matched with (the best one when all were rejected)
   size_t old_index = 0;  // the candidate's index among the stored keyframes
-  double score = 0;      // bowScore of the two
+  bool old_from_map = false;  // the candidate is a keyframe of the loaded map
+  double score = 0;           // bowScore of the two
   LoopCheck check;
 };
 
@@ -55,23 +58,25 @@ class LoopDetector {
   /// candidate passed the appearance test (accepted or not).
   std::optional<LoopEvent> add(double t, const Eigen::Isometry3d& body,
                                KeyframeAppearance appearance);
-  /// Forgets every keyframe (the odometry re-initialized in another world).
-  void clear();
+  /// Stores the keyframes of a loaded map (before any add()) and trains the vocabulary on them.
+  void addMapKeyframes(std::vector<StoredKeyframe> keyframes);
+  /// Forgets the keyframes add() stored, not the map's (the odometry re-initialized in another
+  /// world).
+  void clearSession();
   size_t keyframes() const { return keyframes_.size(); }
+  size_t mapKeyframes() const { return map_keyframes_; }
+  /// Every keyframe stored, the map's first.
+  const std::vector<StoredKeyframe>& stored() const { return keyframes_; }
   int vocabularyWords() const { return vocabulary_.words(); }
 
  private:
-  struct Stored {
-    double t;
-    Eigen::Isometry3d body;
-    KeyframeAppearance appearance;
-  };
   void trainVocabulary();
   std::optional<LoopEvent> query(const BowVector& bow);
 
   LoopDetectorOptions options_;
   Eigen::Isometry3d T_BC_;
-  std::vector<Stored> keyframes_;
+  std::vector<StoredKeyframe> keyframes_;
+  size_t map_keyframes_ = 0;  // the first ones
   BinaryVocabulary vocabulary_;
   KeyframeDatabase database_;
   size_t next_training_ = 0;  // keyframes at the next training; 0: the first

@@ -5,6 +5,7 @@
 #include <sys/resource.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <iomanip>
 #include <sstream>
@@ -65,7 +66,8 @@ std::vector<JsonObject> discoveriesJson(const std::vector<PlaneDiscoveryEvent>& 
 }
 
 /// One object per revisit found by appearance:
-/// `{"t": ..., "t_old": ..., "score": ..., "accepted": true, "why": "", "inliers": 61}`.
+/// `{"t": ..., "t_old": ..., "score": ..., "accepted": true, "why": "", "inliers": 61,
+/// "map": false}` ("map": the old keyframe is a loaded map's).
 std::vector<JsonObject> loopsJson(const std::vector<LoopEvent>& events) {
   std::vector<JsonObject> out;
   for (const LoopEvent& e : events)
@@ -75,7 +77,8 @@ std::vector<JsonObject> loopsJson(const std::vector<LoopEvent>& events) {
                       .number("score", e.score)
                       .flag("accepted", e.check.accepted)
                       .text("why", e.check.why)
-                      .integer("inliers", e.check.inliers));
+                      .integer("inliers", e.check.inliers)
+                      .flag("map", e.old_from_map));
   return out;
 }
 
@@ -185,7 +188,13 @@ void RunStatisticsModule::write(double wall) const {
         .integer("loops_found", static_cast<long long>(loops_->events.size()))
         .integer("loops_accepted", accepted)
         .integer("loops_rejected", static_cast<long long>(loops_->events.size()) - accepted)
+        .integer("map_keyframes", static_cast<long long>(loops_->map_keyframes))
         .objects("loops", loopsJson(loops_->events));
+    // The first keyframe that revisited the loaded map's; null when none did.
+    if (loops_->relocalized_t)
+      summary.stamp("relocalized_t", *loops_->relocalized_t);
+    else
+      summary.number("relocalized_t", std::nan(""));
   }
   summary.text("status", estimator_ ? e.status : "no estimator");
   writeFileAtomically(path("summary.json"), [&](std::ostream& s) { s << summary.str(); });

@@ -112,5 +112,57 @@ TEST(FourDofPoseGraph, WithoutLoopsTheOdometryIsKept) {
     EXPECT_LT((graph.corrected(k).translation() - circlePose(0.1 * k).translation()).norm(), 1e-9);
 }
 
+TEST(FourDofPoseGraph, ARevisitOfAMapMovesTheRunIntoTheMapsFrame) {
+  // A map of one lap held where it was saved; a second run flies the lap again in a world turned
+  // by 1.2 rad and moved by (30, -4, 0.5) m (another start), its odometry turning 0.1° too far at
+  // each step. Every keyframe of the run revisits the map's (measured exactly).
+  constexpr int kKeyframes = 40;
+  Eigen::Isometry3d world_to_run = Eigen::Isometry3d::Identity();
+  world_to_run.linear() = fromYawPitchRoll(1.2, 0, 0);
+  world_to_run.translation() = Eigen::Vector3d(30, -4, 0.5);
+  FourDofPoseGraph graph(PoseGraphOptions{});
+  for (int k = 0; k < kKeyframes; ++k) graph.addMapKeyframe(circlePose(0.15 * k));
+  Eigen::Isometry3d drifted = world_to_run * circlePose(0);
+  double odometry_error = 0;
+  for (int k = 0; k < kKeyframes; ++k) {
+    if (k > 0) {
+      const Eigen::Isometry3d step = circlePose(0.15 * (k - 1)).inverse() * circlePose(0.15 * k);
+      drifted = drifted * step;
+      const Eigen::Vector3d ypr = yawPitchRoll(drifted.linear());
+      const Eigen::Vector3d true_ypr = yawPitchRoll(circlePose(0.15 * k).linear());
+      drifted.linear() = fromYawPitchRoll(ypr.x() + 0.1 * M_PI / 180, true_ypr.y(), true_ypr.z());
+    }
+    odometry_error = std::max(odometry_error, (world_to_run.inverse() * drifted.translation() -
+                                               circlePose(0.15 * k).translation())
+                                                  .norm());
+    const size_t index = graph.addKeyframe(drifted);
+    ASSERT_EQ(index, static_cast<size_t>(kKeyframes + k));
+    EXPECT_EQ(graph.relocalized(), k > 0);
+    // Before the first revisit the run is in its own world.
+    if (k == 0) {
+      EXPECT_GT((graph.corrected(index).translation() - circlePose(0).translation()).norm(), 10);
+    }
+    graph.addLoop(k, index, drifted);  // the same place: the old body is the query's
+  }
+  graph.optimize();
+  double error = 0;
+  for (int k = 0; k < kKeyframes; ++k) {
+    // The map's keyframes are held; the run's are where the map has the same place.
+    EXPECT_LT((graph.corrected(k).translation() - circlePose(0.15 * k).translation()).norm(),
+              1e-12);
+    error = std::max(
+        error, (graph.corrected(kKeyframes + k).translation() - circlePose(0.15 * k).translation())
+                   .norm());
+  }
+  EXPECT_GT(odometry_error, 0.5);
+  EXPECT_LT(error, 0.1 * odometry_error);
+  std::printf("the run's keyframes off the map's by %.3f m at most (odometry %.3f m)\n", error,
+              odometry_error);
+  // A new world (a reset) forgets the run, not the map.
+  graph.clearSession();
+  EXPECT_EQ(graph.size(), static_cast<size_t>(kKeyframes));
+  EXPECT_FALSE(graph.relocalized());
+}
+
 }  // namespace
 }  // namespace rpvio

@@ -128,5 +128,45 @@ TEST(LoopDetector, FindsTheRevisitsOfALapAndNoFalseOne) {
   EXPECT_GE(accepted, static_cast<int>(0.3 * lap / 0.5 / 2)) << events.size() << " found";
 }
 
+TEST(LoopDetector, AMapsKeyframesAreCandidatesFromTheRunsFirstKeyframe) {
+  // A map of the first lap (a keyframe a second, at the true poses); a run over the second lap in
+  // another world (turned and moved, as a run that started elsewhere has it) and stamped on the
+  // map's clock as if it had flown first (a map keyframe is a candidate whatever its age). The
+  // run's first keyframe is already recognized in the map, and every revisit is true.
+  sim::Simulator sim(staticWarehouse());
+  const double lap = revisitOf(sim, 5.0) - 5.0;
+  const LoopDetectorOptions options;
+  std::vector<StoredKeyframe> map;
+  for (double t = 0; t < lap; t += 1.0)
+    map.push_back({t, sim.bodyPose(t), keyframeAt(sim, t, Eigen::Isometry3d::Identity())});
+  LoopDetector detector(options, sim.calibration().T_BC);
+  detector.addMapKeyframes(map);
+  ASSERT_GT(detector.vocabularyWords(), 0);
+  std::vector<LoopEvent> events;
+  for (double t = lap + 2; t < lap + 8; t += 0.5) {
+    const Eigen::Isometry3d world_to_run = fourDofDrift();
+    const auto e =
+        detector.add(t - lap, world_to_run * sim.bodyPose(t), keyframeAt(sim, t, world_to_run));
+    if (t == lap + 2) {
+      ASSERT_TRUE(e && e->check.accepted) << "the run's first keyframe";
+    }
+    if (e) events.push_back(*e);
+  }
+  int accepted = 0;
+  for (const LoopEvent& e : events) {
+    if (!e.check.accepted) continue;
+    ++accepted;
+    EXPECT_TRUE(e.old_from_map);
+    EXPECT_LT(e.old_index, map.size());
+    EXPECT_LT((sim.bodyPose(e.t + lap).translation() - sim.bodyPose(e.t_old).translation()).norm(),
+              3.0)
+        << "false loop " << e.t << " -> " << e.t_old;
+  }
+  EXPECT_GE(accepted, 8) << events.size() << " found";
+  // A new world forgets the run's keyframes, not the map's.
+  detector.clearSession();
+  EXPECT_EQ(detector.keyframes(), map.size());
+}
+
 }  // namespace
 }  // namespace rpvio
