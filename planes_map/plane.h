@@ -2,6 +2,7 @@
 // A persistent plane of the map: world plane n·X = d (unit n), its uncertainty, the points that
 // support it (bounded, voxel-decimated) and its extent (convex hull of the support in the plane).
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <set>
 #include <vector>
 
@@ -39,8 +40,14 @@ struct Plane {
   void planeFrame(Eigen::Vector3d& origin, Eigen::Vector3d& u, Eigen::Vector3d& v) const;
   /// Recomputes `polygon` from `support` (2D convex hull in the plane frame).
   void updatePolygon();
+  /// Support for a plane read from a file (which keeps its outline only): the polygon's vertices
+  /// and a grid of `spacing` inside it.
+  void supportFromPolygon(double spacing);
   /// Voxel-grid decimation of `support` to one point per cell, at most `max_points` kept.
   void decimateSupport(double voxel_size, size_t max_points);
+  /// The plane in another frame, X' = T X: n' = R n, d' = d + n'ᵀt, the covariance carried by the
+  /// Jacobian [[R, 0], [tᵀR, 1]] of (n', d') in (n, d); support, polygon and motion moved alike.
+  Plane transformed(const Eigen::Isometry3d& T) const;
 };
 
 }  // namespace rpvio

@@ -123,6 +123,28 @@ void PlanesMap::record(Plane& plane, const PlaneObservation& obs) const {
   plane.mask_ids.insert(obs.mask_id);
 }
 
+int PlanesMap::addPlane(const Plane& plane, bool associate) {
+  for (Plane& p : planes_) {
+    if (!associate || !compatible(p, plane.normal, plane.distance, plane.support)) continue;
+    PlaneObservation observation;
+    observation.mask_id = plane.mask_ids.empty() ? 0 : *plane.mask_ids.begin();
+    observation.normal = plane.normal;
+    observation.distance = plane.distance;
+    observation.covariance = plane.covariance;
+    observation.points = plane.support;
+    observation.time = plane.first_seen;
+    fuse(p, orientedLike(p.normal, observation));
+    p.observations += plane.observations - 1;  // fuse() counted one
+    p.mask_ids.insert(plane.mask_ids.begin(), plane.mask_ids.end());
+    p.last_seen = std::max(p.last_seen, plane.last_seen);
+    return p.id;
+  }
+  Plane added = plane;
+  added.id = next_id_++;
+  planes_.push_back(added);
+  return added.id;
+}
+
 int PlanesMap::update(const PlaneObservation& observation) {
   Plane* target = nullptr;
   const auto linked = mask_to_plane_.find(observation.mask_id);

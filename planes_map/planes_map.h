@@ -66,6 +66,10 @@ class PlanesMap {
   /// Associates the observation with an existing plane (the one its mask id currently maps to, or
   /// any compatible one) and fuses it, or creates a new plane. Returns the map id.
   int update(const PlaneObservation& observation);
+  /// A plane of another map (a saved one, already in this map's frame): fused into a compatible
+  /// plane by its geometry alone (its labels are another run's) or kept as a new entry, with its
+  /// counts, times and labels; `associate` false: always a new entry. Returns the map id.
+  int addPlane(const Plane& plane, bool associate = true);
   /// Merges planes that have become the same surface; returns how many were merged away.
   size_t mergeDuplicates();
 

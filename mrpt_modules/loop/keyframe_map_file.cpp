@@ -105,6 +105,10 @@ std::string keyframeMapPath(const std::string& dir) {
   return (std::filesystem::path(dir) / "keyframes.rpvmap").string();
 }
 
+std::string mapPlanesPath(const std::string& dir) {
+  return (std::filesystem::path(dir) / "planes.yaml").string();
+}
+
 void writeKeyframeMap(const std::string& path, const KeyframeMap& map) {
   ByteWriter w;
   w.putBytes(kMagic, sizeof kMagic);

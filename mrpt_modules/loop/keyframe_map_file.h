@@ -22,6 +22,8 @@ struct KeyframeMap {
 
 /// DIR/keyframes.rpvmap
 std::string keyframeMapPath(const std::string& dir);
+/// DIR/planes.yaml: the map's planes, in its frame (plane_map_exporters.h's format)
+std::string mapPlanesPath(const std::string& dir);
 
 /// Writes the map whole or not at all (std::runtime_error naming the path when it cannot).
 void writeKeyframeMap(const std::string& path, const KeyframeMap& map);

@@ -5,6 +5,7 @@
 #include "common/input_error.h"
 #include "mrpt_modules/factors/parameter_blocks.h"
 #include "mrpt_modules/loop/keyframe_map_file.h"
+#include "planes_map/plane_map_exporters.h"
 #include "rawlog_io/rawlog_labels.h"
 
 IMPLEMENTS_MRPT_OBJECT(LoopClosureModule, rpvio::Module, rpvio)
@@ -31,6 +32,9 @@ void LoopClosureModule::initialize(const IniFile& config, const std::string& sec
         locateImage(dynamic_cast<const mrpt::obs::CObservationImage&>(*m.observation), *m.reader);
   });
   context.bus.subscribe<KeyframeLeft>([this](const KeyframeLeft& k) { onKeyframe(k); });
+  context.bus.subscribe<MapSummary>([this](const MapSummary& s) {
+    if (s.planes_map) run_planes_ = s.planes_map->confirmedPlanes();
+  });
   context.bus.subscribe<StateEstimate>([this](const StateEstimate& s) {
     // Composed as quaternions: without a correction, exactly the odometry's pose.
     const Eigen::Isometry3d& C = correction_.T;
@@ -122,8 +126,23 @@ void LoopClosureModule::finish() {
   MRPT_LOG_INFO_STREAM("loop closure: " << summary.keyframes << " keyframes, " << events_.size()
                                         << " revisits found by appearance, " << accepted
                                         << " accepted");
-  if (!maps_.save.empty()) saveMap(maps_.save);
+  // The map (keyframes and planes) after a last solve; the published poses are as they were.
+  if (loop_unsolved_) graph_->optimize();
+  const bool in_map = detector_->mapKeyframes() == 0 || graph_->relocalized();
+  if (run_planes_) {
+    summary.planes = planesInGraphFrame(*run_planes_, runCorrections());
+    if (in_map && !map_planes_.empty()) summary.planes = mergedPlanes(map_planes_, summary.planes);
+  }
+  if (!maps_.save.empty()) saveMap(maps_.save, in_map ? summary.planes : map_planes_);
   bus_->publish(summary);
+}
+
+KeyframeCorrections LoopClosureModule::runCorrections() const {
+  KeyframeCorrections corrections;
+  const auto& stored = detector_->stored();
+  for (size_t k = detector_->mapKeyframes(); k < stored.size(); ++k)
+    corrections.emplace_back(stored[k].t, graph_->correction(k));
+  return corrections;
 }
 
 void LoopClosureModule::loadMap(const std::string& dir, const Calibration& calibration) {
@@ -132,11 +151,13 @@ void LoopClosureModule::loadMap(const std::string& dir, const Calibration& calib
   const std::string mismatch = calibrationMismatch(map, calibration);
   if (!mismatch.empty()) throw InputError(path, "", "saved with another calibration: " + mismatch);
   for (const StoredKeyframe& k : map.keyframes) graph_->addMapKeyframe(k.body);
-  MRPT_LOG_INFO_STREAM("map " << path << ": " << map.keyframes.size() << " keyframes");
+  map_planes_ = readPlanesYaml(mapPlanesPath(dir));
+  MRPT_LOG_INFO_STREAM("map " << path << ": " << map.keyframes.size() << " keyframes, "
+                              << map_planes_.size() << " planes");
   detector_->addMapKeyframes(std::move(map.keyframes));
 }
 
-void LoopClosureModule::saveMap(const std::string& dir) const {
+void LoopClosureModule::saveMap(const std::string& dir, const std::vector<Plane>& planes) const {
   KeyframeMap map{calibration_.camera, calibration_.T_BC, {}};
   const auto& stored = detector_->stored();
   // The run's keyframes join a loaded map only in its frame.
@@ -152,7 +173,9 @@ void LoopClosureModule::saveMap(const std::string& dir) const {
     map.keyframes.push_back(std::move(saved));
   }
   writeKeyframeMap(keyframeMapPath(dir), map);
-  MRPT_LOG_INFO_STREAM("map saved: " << keyframeMapPath(dir) << ", " << count << " keyframes");
+  writePlanesYaml(mapPlanesPath(dir), planes);
+  MRPT_LOG_INFO_STREAM("map saved: " << keyframeMapPath(dir) << ", " << count << " keyframes, "
+                                     << planes.size() << " planes");
 }
 
 }  // namespace rpvio

@@ -11,7 +11,8 @@
 // With a saved map (PipelineContext::maps.load, keyframe_map_file.h) its keyframes are candidates
 // from the first keyframe on; the first accepted revisit of one relocalizes the run (its poses are
 // published in the map's frame from then on). With maps.save the map's and the run's keyframes
-// are saved at the end, in the map's frame (the run's only when it relocalized in a loaded map).
+// are saved at the end, in the map's frame (the run's only when it relocalized in a loaded map),
+// with the plane map (DIR/planes.yaml) moved by the graph and merged with the loaded one.
 #include <deque>
 #include <exception>
 #include <future>
@@ -26,6 +27,7 @@
 #include "mrpt_modules/estimator/map_sink.h"
 #include "mrpt_modules/loop/four_dof_pose_graph.h"
 #include "mrpt_modules/loop/loop_detector.h"
+#include "mrpt_modules/loop/planes_in_graph_frame.h"
 #include "rawlog_io/rawlog_reader.h"
 
 namespace rpvio {
@@ -54,6 +56,9 @@ struct LoopClosureSummary {
   std::optional<double> relocalized_t;  // the first pose published in the loaded map's frame
   std::vector<LoopEvent> events;        // in the order of the query keyframes
   Trajectory corrected;                 // every published pose, corrected as it was published
+  // The plane map in the graph's frame after its last solve (planes_in_graph_frame.h), with the
+  // loaded map's planes when the run relocalized in it; empty without a plane map.
+  std::vector<Plane> planes;
 };
 
 class LoopClosureModule : public Module {
@@ -77,7 +82,9 @@ class LoopClosureModule : public Module {
                              const Eigen::Isometry3d& body);
   void takeResult();
   void loadMap(const std::string& dir, const Calibration& calibration);
-  void saveMap(const std::string& dir) const;
+  void saveMap(const std::string& dir, const std::vector<Plane>& planes) const;
+  /// The run's keyframes' corrections after the graph's last solve.
+  KeyframeCorrections runCorrections() const;
 
   const Bus* bus_ = nullptr;
   Calibration calibration_;
@@ -86,6 +93,8 @@ class LoopClosureModule : public Module {
   std::map<double, ImageFileRef> images_;  // by image time, until their keyframe has left
   Correction correction_;                  // applied to published poses
   std::optional<double> relocalized_t_;
+  std::optional<std::vector<Plane>> run_planes_;  // the plane map's, at the end of the run
+  std::vector<Plane> map_planes_;                 // the loaded map's
   Trajectory corrected_;
   std::deque<std::future<Correction>> results_;
   // Used on worker_ only:

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 
+#include "mrpt_modules/loop/loop_closure_module.h"
 #include "mrpt_modules/outputs/trajectory_writer_module.h"
 #include "planes_map/plane_map_exporters.h"
 #include "planes_map/planes_map.h"
@@ -23,6 +24,8 @@ void PlaneMapExporterModule::initialize(const IniFile& ini, const std::string& s
   output_dir_ = context.output_dir;
   context.bus.subscribe<StateEstimate>([this](const StateEstimate& s) { odometry_.push_back(s); });
   context.bus.subscribe<MapSummary>([this](const MapSummary& s) { summary_ = s; });
+  context.bus.subscribe<LoopClosureSummary>(
+      [this](const LoopClosureSummary& s) { loop_planes_ = s.planes; });
   setOptionsText("[" + section + "]\n" + describeOptions(options_));
 }
 
@@ -33,6 +36,7 @@ void PlaneMapExporterModule::finish() {
   };
   const std::vector<Plane> planes = summary_->planes_map->confirmedPlanes();
   writePlanesYaml(path("planes.yaml"), planes);
+  if (loop_planes_) writePlanesYaml(path("planes_loop.yaml"), *loop_planes_);
   writePlanesPly(path("planes.ply"), planes);
   writePlanesOctomap(path("planes.bt"), planes, options_.octomap_resolution_m);
   writePlanesScene(path("planes.3Dscene"), planes);

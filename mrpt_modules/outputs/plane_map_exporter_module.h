@@ -1,8 +1,9 @@
 #pragma once
 // Output module: the finished plane map (MapSummary) exported into the pipeline's output
 // folder: planes.yaml, planes.ply, planes.bt (OctoMap), planes.3Dscene and planes_topview.png
-// (drawn with the refined trajectory when there is one, else the odometry's). Options: section
-// [PlaneMapExporterModule] (PlaneMapExportOptions).
+// (drawn with the refined trajectory when there is one, else the odometry's); with the loop
+// closure, planes_loop.yaml: the map in trajectory_loop.tum's frame (LoopClosureSummary::planes).
+// Options: section [PlaneMapExporterModule] (PlaneMapExportOptions).
 #include <optional>
 
 #include "common/options.h"
@@ -38,6 +39,7 @@ class PlaneMapExporterModule : public Module {
   std::string output_dir_;
   std::vector<StateEstimate> odometry_;
   std::optional<MapSummary> summary_;
+  std::optional<std::vector<Plane>> loop_planes_;
 };
 
 }  // namespace rpvio

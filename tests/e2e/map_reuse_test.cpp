@@ -1,7 +1,7 @@
 // rpvio-slam --save-map then --map: a second run of the warehouse flight (20 s of it, from 9 s on)
 // (so its odometry's world is another one) relocalizes in the first run's map and publishes its
-// poses in the map's frame; a damaged map, a map of another camera and a config without the loop
-// closure are refused with one line, exit 2, before anything is written.
+// poses and planes in the map's frame; a damaged map, a map of another camera and a config without
+// the loop closure are refused with one line, exit 2, before anything is written.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,6 +10,7 @@
 #include <regex>
 
 #include "mrpt_modules/loop/keyframe_map_file.h"
+#include "planes_map/plane_map_exporters.h"
 #include "rawlog_io/calibration.h"
 #include "rawlog_io/trajectory_io.h"
 #include "sim/sequence_writer.h"
@@ -82,6 +83,28 @@ TEST(MapReuse, ASecondRunStartedElsewhereRelocalizesInTheFirstRunsMap) {
       odometry[odometry.size() / 2]);
   EXPECT_LT(median, 0.03);
   EXPECT_LT(corrected.back(), 0.15);
+  // The plane map follows: the second run's planes, in its own world in planes.yaml, are moved
+  // into the map's frame and merged with the map's planes (the same surfaces: none added).
+  const auto map_planes = readPlanesYaml(mapPlanesPath(dir.file("map")));
+  const auto own_planes = readPlanesYaml(dir.file("b/planes.yaml"));
+  const auto merged_planes = readPlanesYaml(dir.file("b/planes_loop.yaml"));
+  ASSERT_GE(map_planes.size(), 2u);
+  ASSERT_FALSE(own_planes.empty());
+  EXPECT_EQ(merged_planes.size(), map_planes.size());
+  const auto nearest_offset = [&](const Plane& p) {
+    double best = 1e9;
+    for (const Plane& m : map_planes)
+      if (std::abs(m.normal.dot(p.normal)) > std::cos(2 * M_PI / 180))
+        best = std::min(best,
+                        std::abs(m.distance - (m.normal.dot(p.normal) > 0 ? 1 : -1) * p.distance));
+    return best;
+  };
+  double own_offset = 0;
+  for (const Plane& p : own_planes) own_offset = std::max(own_offset, nearest_offset(p));
+  for (const Plane& p : merged_planes) EXPECT_LT(nearest_offset(p), 0.05) << p.id;
+  EXPECT_GT(own_offset, 0.5);
+  EXPECT_EQ(test::readFile(dir.file("b/planes_loop.yaml")),
+            test::readFile(mapPlanesPath(dir.file("map2"))));
   // The second run's map holds the first's keyframes, unmoved, and its own.
   const KeyframeMap merged = readKeyframeMap(keyframeMapPath(dir.file("map2")));
   ASSERT_GT(merged.keyframes.size(), map.keyframes.size() + 50);

@@ -83,6 +83,36 @@ TEST(PlanesMap, TwoLapsGiveEveryPlaneOnceAndAccurately) {
   EXPECT_LT(worst_distance, 0.05);
 }
 
+TEST(PlanesMap, TheSavedMapOfAnotherRunMergesPlaneByPlane) {
+  // Two runs' maps of the warehouse (their own labels, the same numbers for other planes: a label
+  // says nothing across runs); the second's planes added to the first's: every plane once, its
+  // counts summed and both runs' labels kept.
+  std::mt19937_64 rng(5);
+  PlanesMap first, second;
+  const auto& planes = scene().planes();
+  for (size_t k = 0; k < planes.size(); ++k)
+    for (int seen = 0; seen < 3; ++seen) {
+      first.update(observe(planes[k], 1000 + static_cast<int>(k), seen, rng));
+      second.update(
+          observe(planes[k], 1000 + static_cast<int>((k + 1) % planes.size()), seen, rng));
+    }
+  const size_t before = first.planes().size();
+  ASSERT_EQ(second.planes().size(), before);
+  for (const Plane& p : second.planes()) first.addPlane(p);
+  EXPECT_EQ(first.planes().size(), before);
+  for (const Plane& p : first.planes()) {
+    EXPECT_EQ(p.observations, 6u) << p.id;
+    EXPECT_EQ(p.mask_ids.size(), 2u) << p.id;
+  }
+  // A plane of nowhere in this map is kept as a new entry, with what it was.
+  const Plane far = second.planes().front().transformed(
+      Eigen::Isometry3d(Eigen::Translation3d(second.planes().front().normal * 5)));
+  const int id = first.addPlane(far);
+  ASSERT_NE(first.plane(id), nullptr);
+  EXPECT_EQ(first.planes().size(), before + 1);
+  EXPECT_EQ(first.plane(id)->observations, 3u);
+}
+
 TEST(PlanesMap, SameLabelSeenAgainWithDriftKeepsItsEntry) {
   PlanesMap map;
   PlaneObservation first;
