@@ -23,10 +23,21 @@ struct ObservationMessage {
 
 class Bus {
  public:
+  /// A subscriber of a message published with publishRetained() gets the last one at once.
   template <typename Message>
   void subscribe(std::function<void(const Message&)> handler) {
-    handlers_[std::type_index(typeid(Message))].push_back(
+    const std::type_index type(typeid(Message));
+    handlers_[type].push_back(
         [h = std::move(handler)](const void* m) { h(*static_cast<const Message*>(m)); });
+    if (const auto kept = retained_.find(type); kept != retained_.end())
+      handlers_[type].back()(kept->second.get());
+  }
+  /// Publishes and keeps the message for the modules that subscribe later (a module's state that
+  /// the modules listed after it need too, e.g. MapReady).
+  template <typename Message>
+  void publishRetained(const Message& message) {
+    retained_[std::type_index(typeid(Message))] = std::make_shared<Message>(message);
+    publish(message);
   }
   template <typename Message>
   void publish(const Message& message) const {
@@ -49,6 +60,7 @@ class Bus {
 
  private:
   std::map<std::type_index, std::vector<std::function<void(const void*)>>> handlers_;
+  std::map<std::type_index, std::shared_ptr<const void>> retained_;
   std::map<std::string, std::vector<std::function<void(const ObservationMessage&)>>>
       sensor_handlers_;
 };

@@ -24,7 +24,7 @@ void MapBuilderModule::initialize(const IniFile& ini, const std::string& section
   context.bus.subscribe<NewWorld>([this](const NewWorld&) { builder_->newWorld(); });
   context.bus.subscribe<WindowFinished>(
       [this](const WindowFinished& end) { builder_->windowFinished(end); });
-  context.bus.publish(MapReady{&builder_->planesMap()});
+  context.bus.publishRetained(MapReady{&builder_->planesMap()});
   setOptionsText("[" + section + "]\n" + describeOptions(options) + "\n[PlanesMap]\n" +
                  map_options.describe());
 }

@@ -34,7 +34,7 @@ KeyframeAppearance describeKeyframe(const cv::Mat& image,
       out.points.push_back(tracked[k.class_id]);
     } else {
       const cv::Point2f& x = corner_normalized[next_corner++];
-      out.points.push_back({Eigen::Vector2d(x.x, x.y), std::nullopt});
+      out.points.push_back({Eigen::Vector2d(x.x, x.y), std::nullopt, 0});
     }
   }
   return out;

@@ -16,6 +16,7 @@ namespace rpvio {
 struct AppearancePoint {
   Eigen::Vector2d normalized = Eigen::Vector2d::Zero();  // undistorted, z = 1
   std::optional<Eigen::Vector3d> world;                  // tracked and triangulated only
+  int plane = 0;  // the persistent plane (map id) of a tracked feature on one; 0: none known
 };
 
 struct KeyframeAppearance {

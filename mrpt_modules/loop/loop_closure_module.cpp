@@ -32,6 +32,8 @@ void LoopClosureModule::initialize(const IniFile& config, const std::string& sec
         locateImage(dynamic_cast<const mrpt::obs::CObservationImage&>(*m.observation), *m.reader);
   });
   context.bus.subscribe<KeyframeLeft>([this](const KeyframeLeft& k) { onKeyframe(k); });
+  // Read on this thread only, as the keyframe leaves (the map builder updates it on this thread).
+  context.bus.subscribe<MapReady>([this](const MapReady& m) { planes_map_ = m.planes_map; });
   context.bus.subscribe<MapSummary>([this](const MapSummary& s) {
     if (s.planes_map) run_planes_ = s.planes_map->confirmedPlanes();
   });
@@ -59,6 +61,11 @@ void LoopClosureModule::initialize(const IniFile& config, const std::string& sec
   setOptionsText("[" + section + "]\n" + describeOptions(options_));
 }
 
+int LoopClosureModule::mapPlaneOf(int label) const {
+  const Plane* plane = label != 0 && planes_map_ ? planes_map_->planeOfMask(label) : nullptr;
+  return plane ? plane->id : 0;
+}
+
 void LoopClosureModule::onKeyframe(const KeyframeLeft& left) {
   const double t = left.keyframe.t;
   const auto found = images_.find(left.keyframe.image_t);
@@ -67,7 +74,7 @@ void LoopClosureModule::onKeyframe(const KeyframeLeft& left) {
   images_.erase(images_.begin(), std::next(found));  // keyframes leave in time order
   std::vector<AppearancePoint> tracked;
   for (const ArchivedObservation& o : left.observations)
-    tracked.push_back({o.observation.normalized, o.world});
+    tracked.push_back({o.observation.normalized, o.world, mapPlaneOf(o.plane_id)});
   const Eigen::Isometry3d body = poseIsometry(left.keyframe.pose);
   results_.push_back(worker_->submit([this, t, image, tracked = std::move(tracked), body] {
     return processKeyframe(t, image, tracked, body);
@@ -169,7 +176,7 @@ void LoopClosureModule::saveMap(const std::string& dir, const std::vector<Plane>
   for (size_t k = 0; k < count; ++k) {
     StoredKeyframe saved{stored[k].t, graph_->corrected(k), {{}, stored[k].appearance.descriptors}};
     for (const AppearancePoint& p : stored[k].appearance.points)
-      saved.appearance.points.push_back({p.normalized, std::nullopt});
+      saved.appearance.points.push_back({p.normalized, std::nullopt, 0});
     map.keyframes.push_back(std::move(saved));
   }
   writeKeyframeMap(keyframeMapPath(dir), map);

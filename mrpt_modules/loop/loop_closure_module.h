@@ -71,6 +71,8 @@ class LoopClosureModule : public Module {
 
  private:
   void onKeyframe(const KeyframeLeft& left);
+  /// The persistent plane a track's plane label stands for now (0: none).
+  int mapPlaneOf(int label) const;
   /// The graph's correction at a keyframe; `in_map`: it moves the run into the loaded map's frame.
   struct Correction {
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
@@ -95,6 +97,7 @@ class LoopClosureModule : public Module {
   std::optional<double> relocalized_t_;
   std::optional<std::vector<Plane>> run_planes_;  // the plane map's, at the end of the run
   std::vector<Plane> map_planes_;                 // the loaded map's
+  const PlanesMap* planes_map_ = nullptr;         // the run's (MapReady)
   Trajectory corrected_;
   std::deque<std::future<Correction>> results_;
   // Used on worker_ only:

@@ -31,6 +31,7 @@ LoopCheck verifyLoop(const KeyframeAppearance& query, const KeyframeAppearance& 
   cv::BFMatcher(cv::NORM_HAMMING).knnMatch(query_descriptors, old.descriptors, knn, 2);
   std::vector<cv::Point3d> world;
   std::vector<cv::Point2d> seen;
+  std::vector<std::pair<int, int>> planes;  // of each match: the query point's, the old point's
   for (const auto& m : knn) {
     if (m.empty() || m[0].distance > options.loop_max_hamming) continue;
     if (m.size() > 1 && m[0].distance >= options.loop_match_ratio * m[1].distance) continue;
@@ -38,6 +39,8 @@ LoopCheck verifyLoop(const KeyframeAppearance& query, const KeyframeAppearance& 
     const Eigen::Vector2d& u = old.points[m[0].trainIdx].normalized;
     world.emplace_back(X.x(), X.y(), X.z());
     seen.emplace_back(u.x(), u.y());
+    planes.emplace_back(query.points[with_point[m[0].queryIdx]].plane,
+                        old.points[m[0].trainIdx].plane);
   }
   check.matches = static_cast<int>(world.size());
   if (check.matches < options.loop_min_inliers)
@@ -69,6 +72,17 @@ LoopCheck verifyLoop(const KeyframeAppearance& query, const KeyframeAppearance& 
     std::snprintf(why, sizeof why, "tilt %.1f deg from the odometry's", tilt_deg);
     return rejected(check, why);
   }
+  for (int i : inliers) {
+    const auto [query_plane, old_plane] = planes[i];
+    if (query_plane == 0 || old_plane == 0) continue;
+    ++check.plane_pairs;
+    check.same_plane_pairs += query_plane == old_plane;
+  }
+  if (options.loop_plane_pairs > 0 && check.plane_pairs >= options.loop_plane_pairs &&
+      2 * check.same_plane_pairs <= check.plane_pairs)
+    return rejected(check, std::to_string(check.plane_pairs - check.same_plane_pairs) + " of " +
+                               std::to_string(check.plane_pairs) +
+                               " inliers on planes on another plane");
   check.accepted = true;
   return check;
 }

@@ -67,7 +67,8 @@ std::vector<JsonObject> discoveriesJson(const std::vector<PlaneDiscoveryEvent>& 
 
 /// One object per revisit found by appearance:
 /// `{"t": ..., "t_old": ..., "score": ..., "accepted": true, "why": "", "inliers": 61,
-/// "map": false}` ("map": the old keyframe is a loaded map's).
+/// "map": false, "plane_pairs": 30, "same_plane_pairs": 30}` ("map": the old keyframe is a loaded
+/// map's; the plane check's inliers on planes in both keyframes, and on the same one).
 std::vector<JsonObject> loopsJson(const std::vector<LoopEvent>& events) {
   std::vector<JsonObject> out;
   for (const LoopEvent& e : events)
@@ -78,7 +79,9 @@ std::vector<JsonObject> loopsJson(const std::vector<LoopEvent>& events) {
                       .flag("accepted", e.check.accepted)
                       .text("why", e.check.why)
                       .integer("inliers", e.check.inliers)
-                      .flag("map", e.old_from_map));
+                      .flag("map", e.old_from_map)
+                      .integer("plane_pairs", e.check.plane_pairs)
+                      .integer("same_plane_pairs", e.check.same_plane_pairs));
   return out;
 }
 

@@ -29,7 +29,8 @@ KeyframeMap smallMap(int keyframes, int points) {
     keyframe.body.translation() = Eigen::Vector3d(u(rng), u(rng), u(rng)) * 10;
     keyframe.appearance.descriptors.create(points, 32, CV_8U);
     cv::randu(keyframe.appearance.descriptors, 0, 256);
-    for (int i = 0; i < points; ++i) keyframe.appearance.points.push_back({{u(rng), u(rng)}, {}});
+    for (int i = 0; i < points; ++i)
+      keyframe.appearance.points.push_back({{u(rng), u(rng)}, {}, 0});
     map.keyframes.push_back(keyframe);
   }
   return map;

@@ -34,7 +34,7 @@ double revisitOf(const sim::Simulator& sim, double t) {
 }
 
 /// The keyframe at `t`: its image described at 150 tracked corners (as the front-end picks them)
-/// whose world points (in the true world moved by `drift`) are known.
+/// whose world points (in the true world moved by `drift`) and planes (the scene's) are known.
 KeyframeAppearance keyframeAt(sim::Simulator& sim, double t, const Eigen::Isometry3d& drift) {
   const CameraIntrinsics camera = sim.calibration().camera;
   const cv::Mat image = sim.render(t, 0).image;
@@ -46,7 +46,7 @@ KeyframeAppearance keyframeAt(sim::Simulator& sim, double t, const Eigen::Isomet
     if (hit.label == sim::kMaskNothing) continue;
     tracked.push_back(
         {Eigen::Vector2d((c.x - camera.cx) / camera.fx, (c.y - camera.cy) / camera.fy),
-         drift * hit.point});
+         drift * hit.point, hit.label});
   }
   return describeKeyframe(image, tracked, camera, 500);
 }
@@ -74,6 +74,30 @@ TEST(LoopVerification, ARevisitPlacesTheOldCameraInTheDriftedWorld) {
   EXPECT_LT((check.old_body.translation() - expected.translation()).norm(), 0.05);
   EXPECT_LT(Eigen::AngleAxisd(check.old_body.linear().transpose() * expected.linear()).angle(),
             0.5 * M_PI / 180);
+}
+
+TEST(LoopVerification, MatchesOnDifferentPersistentPlanesAreRejected) {
+  // The true revisit above: its inliers on planes are on the same planes in both keyframes. The
+  // same images with the old keyframe's planes known under other ids (as after a false match of
+  // a repeated texture onto another surface): rejected by the plane check alone.
+  sim::Simulator sim(staticWarehouse());
+  const double t_old = 5.0;
+  const double t_query = revisitOf(sim, t_old);
+  KeyframeAppearance old = keyframeAt(sim, t_old, Eigen::Isometry3d::Identity());
+  const KeyframeAppearance query = keyframeAt(sim, t_query, fourDofDrift());
+  const Eigen::Isometry3d T_BC = sim.calibration().T_BC;
+  const LoopCheck check = verifyLoop(query, old, sim.bodyPose(t_old), T_BC, {});
+  ASSERT_TRUE(check.accepted) << check.why;
+  EXPECT_GE(check.plane_pairs, 10);
+  EXPECT_EQ(check.same_plane_pairs, check.plane_pairs);
+  for (AppearancePoint& p : old.points)
+    if (p.plane != 0) p.plane += 1000;
+  const LoopCheck moved = verifyLoop(query, old, sim.bodyPose(t_old), T_BC, {});
+  EXPECT_FALSE(moved.accepted);
+  EXPECT_NE(moved.why.find("on another plane"), std::string::npos) << moved.why;
+  LoopCheckOptions without;
+  without.loop_plane_pairs = 0;
+  EXPECT_TRUE(verifyLoop(query, old, sim.bodyPose(t_old), T_BC, without).accepted);
 }
 
 TEST(LoopVerification, ATiltThatDisagreesWithTheOdometryIsRejected) {
