@@ -1,12 +1,18 @@
 #include "mrpt_modules/loop/loop_detector.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 namespace rpvio {
 
 std::optional<LoopEvent> LoopDetector::add(double t, const Eigen::Isometry3d& body,
                                            KeyframeAppearance appearance) {
+  path_.push_back(keyframes_.size() > map_keyframes_
+                      ? path_.back() +
+                            (body.translation() - keyframes_.back().body.translation()).norm()
+                      : 0.0);
   keyframes_.push_back({t, body, std::move(appearance)});
   if (next_training_ == 0) next_training_ = options_.loop_vocabulary_keyframes;
   if (keyframes_.size() >= next_training_) {
@@ -61,8 +67,16 @@ std::optional<LoopEvent> LoopDetector::query(const BowVector& bow) {
   for (int c = 0; c < std::min<int>(options_.loop_candidates, static_cast<int>(matches.size()));
        ++c) {
     const StoredKeyframe& old = keyframes_[matches[c].keyframe];
-    const LoopCheck check =
+    LoopCheck check =
         verifyLoop(newest.appearance, old.appearance, old.body, T_BC_, options_.check);
+    const double baseline = (newest.body.inverse() * check.old_body).translation().norm();
+    if (check.accepted && options_.loop_max_baseline_m > 0 &&
+        baseline > options_.loop_max_baseline_m) {
+      check.accepted = false;
+      check.why = "baseline " + std::to_string(baseline).substr(0, 4) + " m";
+    }
+    if (check.accepted && matches[c].keyframe >= map_keyframes_)
+      checkDrift(matches[c].keyframe, check);
     if (c == 0 || check.accepted) {
       event.t = newest.t;
       event.t_old = old.t;
@@ -70,21 +84,40 @@ std::optional<LoopEvent> LoopDetector::query(const BowVector& bow) {
       event.old_from_map = matches[c].keyframe < map_keyframes_;
       event.score = matches[c].score;
       event.check = check;
+      event.relative = newest.body.inverse() * check.old_body;
     }
     if (check.accepted) break;
   }
   return event;
 }
 
+void LoopDetector::checkDrift(size_t old_index, LoopCheck& check) const {
+  const Eigen::Isometry3d& odometry = keyframes_[old_index].body;
+  const double path = path_.back() - path_[old_index];
+  const double moved = (check.old_body.translation() - odometry.translation()).norm();
+  const Eigen::Matrix3d turn = odometry.linear().transpose() * check.old_body.linear();
+  const double yaw_deg = std::abs(std::atan2(turn(1, 0), turn(0, 0))) * 180 / M_PI;
+  if (moved <= options_.loop_max_drift_m + options_.loop_max_drift_ratio * path &&
+      yaw_deg <= options_.loop_max_yaw_drift_deg)
+    return;
+  char why[96];
+  std::snprintf(why, sizeof why, "drift %.2f m, %.1f deg over %.1f m of path", moved, yaw_deg,
+                path);
+  check.accepted = false;
+  check.why = why;
+}
+
 void LoopDetector::addMapKeyframes(std::vector<StoredKeyframe> keyframes) {
   if (!keyframes_.empty()) throw std::logic_error("LoopDetector: map keyframes come first");
   keyframes_ = std::move(keyframes);
   map_keyframes_ = keyframes_.size();
+  path_.assign(map_keyframes_, 0.0);
   clearSession();
 }
 
 void LoopDetector::clearSession() {
   keyframes_.resize(map_keyframes_);
+  path_.resize(map_keyframes_);
   database_.clear();
   vocabulary_ = BinaryVocabulary();
   next_training_ = 0;

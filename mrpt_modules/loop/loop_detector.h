@@ -18,10 +18,19 @@
 namespace rpvio {
 
 struct LoopDetectorOptions {
-  int loop_corners = 500;                      // ORB corners per keyframe
-  double loop_min_age_s = 20;                  // s: a candidate is at least this much older
-  double loop_min_score_ratio = 0.3;           // of the query's score with the previous keyframe
-  int loop_candidates = 3;                     // geometric checks per query, best score first
+  int loop_corners = 500;             // ORB corners per keyframe
+  double loop_min_age_s = 20;         // s: a candidate is at least this much older
+  double loop_min_score_ratio = 0.3;  // of the query's score with the previous keyframe
+  int loop_candidates = 3;            // geometric checks per query, best score first
+  // Within a run, the odometry's drift between the two keyframes bounds where the check may place
+  // the old one: within loop_max_drift_m + loop_max_drift_ratio × the path flown between them of
+  // where the odometry has it, and within loop_max_yaw_drift_deg of its yaw.
+  double loop_max_drift_m = 1.0;
+  double loop_max_drift_ratio = 0.05;
+  double loop_max_yaw_drift_deg = 15;
+  // A revisit farther than this from the old keyframe is not used: the PnP's error grows with the
+  // distance to the points (0: any distance).
+  double loop_max_baseline_m = 3;
   size_t loop_vocabulary_keyframes = 40;       // first training
   size_t loop_vocabulary_descriptors = 50000;  // at most, evenly sampled, per training
   LoopCheckOptions check;
@@ -33,6 +42,10 @@ struct LoopDetectorOptions {
     RPVIO_OPTION(v, loop_min_age_s);
     RPVIO_OPTION(v, loop_min_score_ratio);
     RPVIO_OPTION(v, loop_candidates);
+    RPVIO_OPTION(v, loop_max_drift_m);
+    RPVIO_OPTION(v, loop_max_drift_ratio);
+    RPVIO_OPTION(v, loop_max_yaw_drift_deg);
+    RPVIO_OPTION(v, loop_max_baseline_m);
     RPVIO_OPTION(v, loop_vocabulary_keyframes);
     RPVIO_OPTION(v, loop_vocabulary_descriptors);
     check.fields(v);
@@ -47,6 +60,8 @@ struct LoopEvent {
   bool old_from_map = false;  // the candidate is a keyframe of the loaded map
   double score = 0;           // bowScore of the two
   LoopCheck check;
+  // The old keyframe's body seen from the query's (accepted checks): the revisit's measurement.
+  Eigen::Isometry3d relative = Eigen::Isometry3d::Identity();
 };
 
 class LoopDetector {
@@ -75,7 +90,12 @@ class LoopDetector {
 
   LoopDetectorOptions options_;
   Eigen::Isometry3d T_BC_;
+  /// Rejects an accepted check of a run's keyframe that moves the old keyframe farther than the
+  /// odometry can have drifted (a wrong PnP on repeated texture or moving people).
+  void checkDrift(size_t old_index, LoopCheck& check) const;
+
   std::vector<StoredKeyframe> keyframes_;
+  std::vector<double> path_;  // the odometry's path length at each keyframe (the map's: 0)
   size_t map_keyframes_ = 0;  // the first ones
   BinaryVocabulary vocabulary_;
   KeyframeDatabase database_;

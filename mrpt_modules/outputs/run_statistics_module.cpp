@@ -65,10 +65,18 @@ std::vector<JsonObject> discoveriesJson(const std::vector<PlaneDiscoveryEvent>& 
   return out;
 }
 
+/// x, y, z (m) and yaw (deg, about the query body's z) of a relative pose.
+std::vector<double> relativePose(const Eigen::Isometry3d& T) {
+  const Eigen::Vector3d p = T.translation();
+  const double yaw = std::atan2(T.linear()(1, 0), T.linear()(0, 0)) * 180 / M_PI;
+  return {p.x(), p.y(), p.z(), yaw};
+}
+
 /// One object per revisit found by appearance:
 /// `{"t": ..., "t_old": ..., "score": ..., "accepted": true, "why": "", "inliers": 61,
 /// "map": false, "plane_pairs": 30, "same_plane_pairs": 30}` ("map": the old keyframe is a loaded
-/// map's; the plane check's inliers on planes in both keyframes, and on the same one).
+/// map's; the plane check's inliers on planes in both keyframes, and on the same one; "relative":
+/// the old body seen from the query's, x y z m and yaw deg, as the check measured it).
 std::vector<JsonObject> loopsJson(const std::vector<LoopEvent>& events) {
   std::vector<JsonObject> out;
   for (const LoopEvent& e : events)
@@ -81,7 +89,8 @@ std::vector<JsonObject> loopsJson(const std::vector<LoopEvent>& events) {
                       .integer("inliers", e.check.inliers)
                       .flag("map", e.old_from_map)
                       .integer("plane_pairs", e.check.plane_pairs)
-                      .integer("same_plane_pairs", e.check.same_plane_pairs));
+                      .integer("same_plane_pairs", e.check.same_plane_pairs)
+                      .numbers("relative", relativePose(e.relative)));
   return out;
 }
 

@@ -152,6 +152,51 @@ TEST(LoopDetector, FindsTheRevisitsOfALapAndNoFalseOne) {
   EXPECT_GE(accepted, static_cast<int>(0.3 * lap / 0.5 / 2)) << events.size() << " found";
 }
 
+/// The revisits accepted and the reasons of those rejected over 1.3 laps (keyframes every 0.5 s)
+/// whose odometry drifts along x by `drift_per_m` of the distance flown.
+std::vector<LoopEvent> lapWithDrift(double drift_per_m, const LoopDetectorOptions& options) {
+  sim::Simulator sim(staticWarehouse());
+  const double lap = revisitOf(sim, 5.0) - 5.0;
+  LoopDetector detector(options, sim.calibration().T_BC);
+  std::vector<LoopEvent> events;
+  double flown = 0;
+  for (double t = 0; t < 1.3 * lap; t += 0.5) {
+    if (t > 0)
+      flown += (sim.bodyPose(t).translation() - sim.bodyPose(t - 0.5).translation()).norm();
+    Eigen::Isometry3d drift = Eigen::Isometry3d::Identity();
+    drift.translation() = Eigen::Vector3d(drift_per_m * flown, 0, 0);
+    if (auto e = detector.add(t, drift * sim.bodyPose(t), keyframeAt(sim, t, drift)))
+      events.push_back(*e);
+  }
+  return events;
+}
+
+TEST(LoopDetector, ARevisitFartherThanTheOdometryCanDriftOrTooFarAwayIsRejected) {
+  LoopDetectorOptions options;
+  options.loop_vocabulary_keyframes = 20;
+  // Odometry off by 30 % of the distance flown: a revisit a lap later would move the old keyframe
+  // by metres more than loop_max_drift_ratio allows.
+  int rejected_for_drift = 0;
+  for (const LoopEvent& e : lapWithDrift(0.3, options)) {
+    EXPECT_FALSE(e.check.accepted) << e.t << " -> " << e.t_old;
+    rejected_for_drift += e.check.why.rfind("drift ", 0) == 0;
+  }
+  EXPECT_GE(rejected_for_drift, 5);
+  // The same with a bound the drift fits in: accepted.
+  options.loop_max_drift_ratio = 0.5;
+  int accepted = 0;
+  for (const LoopEvent& e : lapWithDrift(0.3, options)) accepted += e.check.accepted;
+  EXPECT_GE(accepted, 5);
+  // Revisits farther apart than loop_max_baseline_m are not used.
+  options.loop_max_baseline_m = 0.05;
+  int rejected_for_baseline = 0;
+  for (const LoopEvent& e : lapWithDrift(0.3, options)) {
+    EXPECT_FALSE(e.check.accepted);
+    rejected_for_baseline += e.check.why.rfind("baseline ", 0) == 0;
+  }
+  EXPECT_GE(rejected_for_baseline, 5);
+}
+
 TEST(LoopDetector, AMapsKeyframesAreCandidatesFromTheRunsFirstKeyframe) {
   // A map of the first lap (a keyframe a second, at the true poses); a run over the second lap in
   // another world (turned and moved, as a run that started elsewhere has it) and stamped on the
