@@ -174,10 +174,8 @@ void LoopClosureModule::saveMap(const std::string& dir, const std::vector<Plane>
                                                                << ": its keyframes are not saved");
   const size_t count = with_run ? stored.size() : detector_->mapKeyframes();
   for (size_t k = 0; k < count; ++k) {
-    StoredKeyframe saved{stored[k].t, graph_->corrected(k), {{}, stored[k].appearance.descriptors}};
-    for (const AppearancePoint& p : stored[k].appearance.points)
-      saved.appearance.points.push_back({p.normalized, std::nullopt, 0});
-    map.keyframes.push_back(std::move(saved));
+    // The file keeps each point's normalized coordinates and descriptor, not its world point.
+    map.keyframes.push_back({stored[k].t, graph_->corrected(k), stored[k].appearance});
   }
   writeKeyframeMap(keyframeMapPath(dir), map);
   writePlanesYaml(mapPlanesPath(dir), planes);

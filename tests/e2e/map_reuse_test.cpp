@@ -38,11 +38,17 @@ std::vector<double> offMap(const KeyframeMap& map, const Trajectory& trajectory,
   return off;
 }
 
+/// The warehouse flight without people, `duration` s of it.
+sim::SimConfig staticFlight(double duration) {
+  sim::SimConfig config;
+  config.duration = duration;
+  config.scene.characters = 0;
+  return config;
+}
+
 TEST(MapReuse, ASecondRunStartedElsewhereRelocalizesInTheFirstRunsMap) {
   test::TempDir dir;
-  sim::SimConfig config;
-  config.duration = 50;
-  config.scene.characters = 0;
+  sim::SimConfig config = staticFlight(50);
   sim::writeSequence(config, dir.file("first"));
   config.duration = 30;
   config.faults.dropped_bursts.push_back({0, 9});  // the camera starts at 9 s
@@ -114,10 +120,7 @@ TEST(MapReuse, ASecondRunStartedElsewhereRelocalizesInTheFirstRunsMap) {
 
 TEST(MapReuse, ADamagedMapAnotherCameraAndNoLoopClosureAreRefusedBeforeAnythingIsWritten) {
   test::TempDir dir;
-  sim::SimConfig config;
-  config.duration = 3;
-  config.scene.characters = 0;
-  sim::writeSequence(config, dir.file("seq"));
+  sim::writeSequence(staticFlight(3), dir.file("seq"));
   const std::string calib = dir.file("seq/calib.ini");
   std::string out;
   // A map to damage: a valid one, written by hand.
